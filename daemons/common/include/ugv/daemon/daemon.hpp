@@ -1,0 +1,123 @@
+// The plumbing every ugv daemon shares, so that each daemon's main() is config -> library ->
+// bus and nothing else:
+//   - the command line (CLI11): --config, --lcm-url, --log-level, --print-config, --version,
+//     --instance, and for processing daemons --replay LOG --out LOG;
+//   - the TOML config (ugv::runtime::Config) with keys common to all daemons
+//     (status_channel, [realtime]) and exit status 2 with `FILE: KEY: why` on any error;
+//   - spdlog to stderr; SIGINT/SIGTERM -> STOPPING=1 and a clean return from run();
+//   - sd_notify READY=1, STATUS=, WATCHDOG=1 only while healthy (data within the timeout);
+//   - the 1 Hz daemon_status_t on STATUS_<NAME> with the named counters.
+//
+// Threads: run() is the main thread: it polls the bus fd, the fds added with add_fd(), the
+// timers and the signal pipe. A daemon may run its device session on a thread of its own;
+// from there it may call publish through out(), counters(), set_state(), mark_alive() and
+// stop_requested(), which are thread-safe. Everything else belongs to the main thread.
+//
+//   int main(int argc, char** argv) {
+//       ugv::daemon::Daemon d({.name = "ugv-lms", .status_channel = "STATUS_LMS"}, argc, argv);
+//       auto device = d.config().get_string("device", "/dev/ugv/lms");
+//       d.start();            // rejects unknown keys, --print-config, real-time, opens the bus
+//       ... subscribe on d.bus(), add_fd/add_timer, start a device thread ...
+//       return d.run();
+//   }
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "ugv/bus/bus.hpp"
+#include "ugv/runtime/config.hpp"
+#include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/notify.hpp"
+
+namespace ugv::daemon {
+
+struct Options
+{
+    std::string name;                // "ugv-lms"
+    std::string status_channel;      // default STATUS_<NAME>; config key status_channel
+    bool processing = false;         // offers --replay LOG --out LOG
+    std::string default_config = ""; // default --config path ("" = run on defaults if absent)
+};
+
+enum class State { starting, running, degraded, fault, stopping };
+
+class Daemon
+{
+public:
+    // Parses the command line and loads the config. On --help/--version prints and exits 0;
+    // on a bad flag or config file prints one line and exits 2.
+    Daemon(Options options, int argc, char** argv);
+    ~Daemon();
+
+    // The daemon's config: read every key, then call start().
+    runtime::Config& config() { return *config_; }
+    // Rejects unknown keys (exit 2), prints the effective config and exits 0 on
+    // --print-config, applies [realtime], opens the bus (exit 2 with one line on failure).
+    void start();
+
+    bus::Bus& bus() { return *in_; }   // subscribe here (live, or the --replay log)
+    bus::Bus& out() { return *out_; }  // publish here (live, or the --out log)
+    bool replaying() const { return replaying_; }
+    const std::string& instance() const { return instance_; }
+    const std::string& name() const { return options_.name; }
+
+    runtime::Counters& counters() { return counters_; }
+    void set_state(State state, const std::string& error = "");
+    State state() const { return state_.load(); }
+    // Data arrived: the daemon is healthy for health_timeout_us from now (watchdog pings).
+    void mark_alive();
+    void set_health_timeout_us(int64_t us) { health_timeout_us_ = us; }
+    // READY=1 (once) and state RUNNING.
+    void ready();
+    // A one-line STATUS= for systemd (also logged at debug level).
+    void notify_status(const std::string& line);
+
+    void add_fd(int fd, std::function<void()> on_readable);
+    void remove_fd(int fd);
+    // Calls fn every period_us of wall-clock time (monotonic), from the main loop.
+    void add_timer(int64_t period_us, std::function<void()> fn);
+    bool stop_requested() const;
+    void request_stop();
+    // The main loop. Live: until SIGINT/SIGTERM, then STOPPING=1, and returns 0.
+    // Replay: dispatches the whole log, then returns 0.
+    int run();
+
+private:
+    struct Timer;
+    void publish_status();
+    void on_watchdog();
+
+    Options options_;
+    std::unique_ptr<runtime::Config> config_;
+    std::unique_ptr<bus::Bus> in_;
+    std::unique_ptr<bus::Bus> out_;
+    std::string lcm_url_, replay_path_, out_path_, instance_, log_level_;
+    bool print_config_ = false;
+    bool replaying_ = false;
+    runtime::Counters counters_;
+    runtime::Notifier notifier_;
+    std::atomic<State> state_{State::starting};
+    std::mutex error_mutex_;
+    std::string last_error_;
+    std::atomic<int64_t> last_alive_us_{0};
+    int64_t health_timeout_us_ = 2'000'000;
+    int64_t start_us_ = 0;
+    int64_t status_seq_ = 0;
+    std::string status_channel_;
+    bool ready_sent_ = false;
+    std::vector<std::pair<int, std::function<void()>>> fds_;
+    std::vector<std::unique_ptr<Timer>> timers_;
+};
+
+// Installs SIGINT/SIGTERM handlers that set a flag and write to a pipe; returns the pipe's
+// read end for poll(). Called by Daemon; exposed for tools (ugv-sim, ugv-dump).
+int install_stop_signals();
+bool stop_signal_received();
+
+}  // namespace ugv::daemon

@@ -1,0 +1,72 @@
+// LCM behind a small interface, with three implementations:
+//   live   - any LCM URL (udpm multicast, memq for in-process tests);
+//   replay - reads an LCM log in order and dispatches each event, as fast as the CPU allows,
+//            deterministically (the processing daemons' --replay);
+//   writer - publishing appends events to an LCM log (the processing daemons' --out).
+// Handlers receive raw bytes; ugv/bus/typed.hpp decodes them into ugv types. Nothing throws
+// through LCM's C callbacks: a handler's exception is caught, counted and logged.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace ugv::bus {
+
+class BusError : public std::runtime_error
+{
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// channel, bytes, and the time the bus received them (us since the epoch; for replay, the
+// time stamp in the log).
+using RawHandler = std::function<void(const std::string& channel, const uint8_t* data, std::size_t size,
+                                      int64_t recv_utime)>;
+
+enum class HandleResult { handled, timeout, end, error };
+
+struct BusCounters
+{
+    uint64_t received = 0;         // messages dispatched to at least one handler
+    uint64_t decode_failures = 0;  // messages a typed handler could not decode (dropped)
+    uint64_t handler_errors = 0;   // exceptions caught from handlers
+    uint64_t publish_failures = 0;
+};
+
+class Bus
+{
+public:
+    virtual ~Bus() = default;
+    virtual bool publish(const std::string& channel, const void* data, std::size_t size) = 0;
+    // channel_regex is matched against the whole channel name, as LCM does.
+    virtual void subscribe(const std::string& channel_regex, RawHandler handler) = 0;
+    // Dispatches what is waiting (live: waits up to timeout_ms; replay: the next event).
+    virtual HandleResult handle(int timeout_ms) = 0;
+    // For poll(): readable when handle() has something to do. -1 when not pollable (replay).
+    virtual int fd() const { return -1; }
+    // The time of the event being dispatched (replay) or now (live), us since the epoch.
+    virtual int64_t now_utime() const = 0;
+    virtual std::string describe() const = 0;
+
+    BusCounters& counters() { return counters_; }
+    const BusCounters& counters() const { return counters_; }
+
+protected:
+    BusCounters counters_;
+};
+
+// LCM_DEFAULT_URL if set, else "udpm://239.255.76.67:7667?ttl=0".
+std::string default_url();
+// Throws BusError when LCM cannot be created for url (one line naming the URL).
+std::unique_ptr<Bus> open_live(const std::string& url);
+// Throws BusError when path cannot be opened as an LCM log.
+std::unique_ptr<Bus> open_log_replay(const std::string& path);
+// Publishing appends events to a new log at path, each stamped with clock() (the replay
+// bus's event time, so output logs are bit-identical run to run). Throws BusError.
+std::unique_ptr<Bus> open_log_writer(const std::string& path, std::function<int64_t()> clock);
+
+}  // namespace ugv::bus

@@ -1,0 +1,84 @@
+// Daemon configuration from one TOML file, validated at start-up.
+//
+// Every getter records the key as known and its effective value; finish() then rejects any
+// key in the file that no getter asked for. Any problem throws ConfigError, whose what() is
+// the one line `FILE: KEY: why` that the daemon prints before exiting with status 2.
+//
+//   ugv::runtime::Config cfg = ugv::runtime::Config::load(path);
+//   auto device = cfg.get_string("device", "/dev/ttyUSB0");
+//   auto baud = cfg.get_int("baud", 500000, {9600, 19200, 38400, 500000});
+//   auto height = cfg.get_double("sensor_height_m", 0.87, 0.0, 5.0);
+//   auto sensor = cfg.section("mount");   // a [mount] table, same rules inside
+//   cfg.finish();
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ugv::runtime {
+
+class ConfigError : public std::runtime_error
+{
+public:
+    ConfigError(const std::string& file, const std::string& key, const std::string& why);
+    const std::string& file() const { return file_; }
+    const std::string& key() const { return key_; }
+    const std::string& why() const { return why_; }
+
+private:
+    std::string file_, key_, why_;
+};
+
+class Config
+{
+public:
+    // Reads and parses path. A missing file or a TOML syntax error throws ConfigError
+    // (key "-" for syntax errors, with line and column in why).
+    static Config load(const std::string& path);
+    // Parses text as if read from a file called name (for tests and built-in defaults).
+    static Config parse(const std::string& text, const std::string& name = "<string>");
+    // An empty configuration: every getter returns its default.
+    static Config empty(const std::string& name = "<defaults>");
+
+    Config(Config&&) noexcept;
+    Config& operator=(Config&&) noexcept;
+    ~Config();
+
+    std::string get_string(const std::string& key, const std::string& def);
+    // One of allowed (exact match).
+    std::string get_enum(const std::string& key, const std::string& def, std::initializer_list<const char*> allowed);
+    bool get_bool(const std::string& key, bool def);
+    // Inclusive range [min, max].
+    int64_t get_int(const std::string& key, int64_t def, int64_t min, int64_t max);
+    // One of allowed.
+    int64_t get_int(const std::string& key, int64_t def, std::initializer_list<int64_t> allowed);
+    // Inclusive range; integers in the file are accepted as doubles; NaN/Inf refused.
+    double get_double(const std::string& key, double def, double min, double max);
+    // An array of numbers of exactly n elements (n = 0: any length), each in [min, max].
+    std::vector<double> get_doubles(const std::string& key, const std::vector<double>& def, std::size_t n,
+                                    double min, double max);
+    std::vector<std::string> get_strings(const std::string& key, const std::vector<std::string>& def);
+    bool has(const std::string& key) const;
+    // A sub-table [name]; its keys are reported as "name.key". Missing table = all defaults.
+    Config section(const std::string& name);
+    // Throws for a value found invalid by the caller, in the same one-line form.
+    [[noreturn]] void fail(const std::string& key, const std::string& why) const;
+
+    // Throws ConfigError for the first key in the file that no getter asked for.
+    void finish();
+    // The effective configuration (defaults filled in) as TOML, for --print-config.
+    std::string effective_toml() const;
+    const std::string& file() const;
+
+private:
+    struct Impl;
+    explicit Config(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ugv::runtime
