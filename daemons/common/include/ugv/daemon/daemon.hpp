@@ -73,7 +73,7 @@ public:
     // Data arrived: the daemon is healthy for health_timeout_us from now (watchdog pings).
     void mark_alive();
     void set_health_timeout_us(int64_t us) { health_timeout_us_ = us; }
-    // READY=1 (once) and state RUNNING.
+    // READY=1 (once) and state RUNNING. Health (watchdog pings) still needs mark_alive().
     void ready();
     // A one-line STATUS= for systemd (also logged at debug level).
     void notify_status(const std::string& line);
@@ -103,6 +103,7 @@ private:
     runtime::Counters counters_;
     runtime::Notifier notifier_;
     std::atomic<State> state_{State::starting};
+    std::atomic<bool> stop_flag_{false};
     std::mutex error_mutex_;
     std::string last_error_;
     std::atomic<int64_t> last_alive_us_{0};

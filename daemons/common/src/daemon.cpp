@@ -1,0 +1,294 @@
+#include "ugv/daemon/daemon.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "status_message.hpp"
+#include "ugv/bus/typed.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/runtime/realtime.hpp"
+
+namespace ugv::daemon {
+
+struct Daemon::Timer
+{
+    int64_t period_us;
+    int64_t next_us;
+    std::function<void()> fn;
+};
+
+namespace {
+
+[[noreturn]] void exit_config_error(const std::string& line)
+{
+    std::fprintf(stderr, "%s\n", line.c_str());
+    std::fflush(stderr);
+    std::_Exit(2);
+}
+
+int8_t wire_state(State s)
+{
+    switch (s) {
+    case State::starting: return ugv::daemon_status_t::STATE_STARTING;
+    case State::running: return ugv::daemon_status_t::STATE_RUNNING;
+    case State::degraded: return ugv::daemon_status_t::STATE_DEGRADED;
+    case State::fault: return ugv::daemon_status_t::STATE_FAULT;
+    case State::stopping: return ugv::daemon_status_t::STATE_STOPPING;
+    }
+    return ugv::daemon_status_t::STATE_FAULT;
+}
+
+const char* state_name(State s)
+{
+    switch (s) {
+    case State::starting: return "STARTING";
+    case State::running: return "RUNNING";
+    case State::degraded: return "DEGRADED";
+    case State::fault: return "FAULT";
+    case State::stopping: return "STOPPING";
+    }
+    return "?";
+}
+
+}  // namespace
+
+Daemon::Daemon(Options options, int argc, char** argv) : options_(std::move(options))
+{
+    // A ConfigError thrown by a daemon's own config reads (before start()) escapes main():
+    // turn it into the one-line message and exit status 2 instead of an abort.
+    std::set_terminate([] {
+        if (auto e = std::current_exception()) {
+            try {
+                std::rethrow_exception(e);
+            } catch (const runtime::ConfigError& ce) {
+                exit_config_error(ce.what());
+            } catch (const std::exception& other) {
+                std::fprintf(stderr, "fatal: %s\n", other.what());
+            } catch (...) {
+            }
+        }
+        std::abort();
+    });
+    std::string config_path = options_.default_config;
+    CLI::App app{options_.name + ": a daemon of the ugv perception stack"};
+    app.add_option("-c,--config", config_path, "TOML configuration file");
+    app.add_option("--lcm-url", lcm_url_, "LCM URL (default: LCM_DEFAULT_URL, else udpm ttl=0)");
+    app.add_option("--log-level", log_level_, "trace, debug, info, warn, error")
+        ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+    app.add_option("--instance", instance_, "instance name (e.g. front), reported in status");
+    app.add_flag("--print-config", print_config_, "print the effective configuration and exit");
+    app.set_version_flag("--version", options_.name + " " + UGV_VERSION);
+    if (options_.processing) {
+        app.add_option("--replay", replay_path_, "read inputs from this LCM log, as fast as possible")
+            ->check(CLI::ExistingFile);
+        app.add_option("--out", out_path_, "with --replay: write outputs to this LCM log");
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        std::exit(app.exit(e));
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        std::exit(2);
+    }
+    if (!replay_path_.empty() && out_path_.empty()) exit_config_error(options_.name + ": --replay needs --out");
+    if (replay_path_.empty() && !out_path_.empty()) exit_config_error(options_.name + ": --out needs --replay");
+    replaying_ = !replay_path_.empty();
+
+    auto logger = spdlog::stderr_color_mt(options_.name);
+    spdlog::set_default_logger(logger);
+    spdlog::set_pattern("%^%l%$ %v");  // journald adds time and name
+    spdlog::set_level(spdlog::level::from_str(log_level_.empty() ? "info" : log_level_));
+
+    try {
+        if (config_path.empty())
+            config_ = std::make_unique<runtime::Config>(runtime::Config::empty());
+        else if (access(config_path.c_str(), F_OK) != 0 && config_path == options_.default_config)
+            config_ = std::make_unique<runtime::Config>(runtime::Config::empty(config_path + " (absent: defaults)"));
+        else
+            config_ = std::make_unique<runtime::Config>(runtime::Config::load(config_path));
+        std::string def_status = options_.status_channel;
+        if (def_status.empty()) {
+            def_status = "STATUS_" + options_.name.substr(options_.name.rfind('-') + 1);
+            for (auto& c : def_status) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        }
+        status_channel_ = config_->get_string("status_channel", def_status);
+    } catch (const runtime::ConfigError& e) {
+        exit_config_error(e.what());
+    }
+}
+
+Daemon::~Daemon() = default;
+
+void Daemon::start()
+{
+    runtime::RealtimeOptions rt;
+    try {
+        runtime::Config r = config_->section("realtime");
+        rt.lock_memory = r.get_bool("lock_memory", false);
+        rt.fifo_priority = static_cast<int>(r.get_int("fifo_priority", 0, 0, 99));
+        for (const double c : r.get_doubles("cpus", {}, 0, 0, 1023)) rt.cpus.push_back(static_cast<int>(c));
+        config_->finish();
+    } catch (const runtime::ConfigError& e) {
+        exit_config_error(e.what());
+    }
+    if (print_config_) {
+        std::fputs(config_->effective_toml().c_str(), stdout);
+        std::exit(0);
+    }
+    for (const auto& w : runtime::apply_realtime(rt)) spdlog::warn("{}", w);
+
+    try {
+        if (replaying_) {
+            in_ = bus::open_log_replay(replay_path_);
+            bus::Bus* in = in_.get();
+            out_ = bus::open_log_writer(out_path_, [in] { return in->now_utime(); });
+        } else {
+            in_ = bus::open_live(lcm_url_.empty() ? bus::default_url() : lcm_url_);
+        }
+    } catch (const bus::BusError& e) {
+        exit_config_error(options_.name + ": " + e.what());
+    }
+    install_stop_signals();
+    start_us_ = io::monotonic_us();
+    spdlog::info("{} {} started on {}", options_.name, UGV_VERSION, in_->describe());
+}
+
+void Daemon::set_state(State state, const std::string& error)
+{
+    const State old = state_.exchange(state);
+    if (!error.empty()) {
+        std::lock_guard<std::mutex> lock(error_mutex_);
+        last_error_ = error;
+    }
+    if (old != state) spdlog::info("state {} -> {}{}{}", state_name(old), state_name(state), error.empty() ? "" : ": ", error);
+}
+
+void Daemon::mark_alive() { last_alive_us_.store(io::monotonic_us()); }
+
+void Daemon::ready()
+{
+    if (state_.load() == State::starting || state_.load() == State::degraded) set_state(State::running);
+    if (!ready_sent_) {
+        notifier_.ready();
+        ready_sent_ = true;
+    }
+}
+
+void Daemon::notify_status(const std::string& line)
+{
+    notifier_.status(line);
+    spdlog::debug("status: {}", line);
+}
+
+void Daemon::add_fd(int fd, std::function<void()> on_readable) { fds_.emplace_back(fd, std::move(on_readable)); }
+
+void Daemon::remove_fd(int fd)
+{
+    std::erase_if(fds_, [fd](const auto& p) { return p.first == fd; });
+}
+
+void Daemon::add_timer(int64_t period_us, std::function<void()> fn)
+{
+    timers_.push_back(std::make_unique<Timer>(Timer{period_us, io::monotonic_us() + period_us, std::move(fn)}));
+}
+
+bool Daemon::stop_requested() const { return stop_signal_received() || stop_flag_.load(); }
+
+void Daemon::request_stop()
+{
+    stop_flag_.store(true);
+}
+
+void Daemon::publish_status()
+{
+    std::string err;
+    {
+        std::lock_guard<std::mutex> lock(error_mutex_);
+        err = last_error_;
+    }
+    auto counters = counters_.snapshot();
+    counters.emplace_back("bus_decode_failures", static_cast<int64_t>(in_->counters().decode_failures));
+    counters.emplace_back("bus_handler_errors", static_cast<int64_t>(in_->counters().handler_errors));
+    counters.emplace_back("bus_publish_failures", static_cast<int64_t>(out_->counters().publish_failures));
+    const auto msg = make_status_message(io::now_utime(), status_seq_++, options_.name, instance_,
+                                         wire_state(state_.load()), err, io::monotonic_us() - start_us_, counters);
+    bus::publish(*out_, status_channel_, msg);
+}
+
+void Daemon::on_watchdog()
+{
+    const bool healthy = state_.load() == State::running && io::monotonic_us() - last_alive_us_.load() <= health_timeout_us_;
+    if (healthy) notifier_.watchdog();
+}
+
+int Daemon::run()
+{
+    if (!in_) {
+        spdlog::critical("Daemon::run() called before start()");
+        return 1;
+    }
+    if (replaying_) {
+        while (!stop_requested() && in_->handle(0) == bus::HandleResult::handled) {
+        }
+        spdlog::info("replay done: {} messages dispatched, {} undecodable", in_->counters().received,
+                     in_->counters().decode_failures);
+        out_.reset();  // closes the output log
+        return 0;
+    }
+    if (!out_) {
+        // Live: one LCM instance both ways. The out() alias must not own it twice.
+        out_.reset(in_.get());
+    }
+    add_timer(1'000'000, [this] { publish_status(); });
+    const int64_t wd = notifier_.watchdog_interval_us();
+    if (wd > 0) add_timer(wd, [this] { on_watchdog(); });
+    publish_status();
+
+    const int stop_fd = install_stop_signals();
+    std::vector<pollfd> pfds;
+    while (!stop_requested()) {
+        pfds.clear();
+        pfds.push_back({stop_fd, POLLIN, 0});
+        pfds.push_back({in_->fd(), POLLIN, 0});
+        for (const auto& [fd, fn] : fds_) pfds.push_back({fd, POLLIN, 0});
+        int64_t now = io::monotonic_us();
+        int64_t wait_us = 100'000;
+        for (const auto& t : timers_) wait_us = std::min(wait_us, std::max<int64_t>(0, t->next_us - now));
+        ::poll(pfds.data(), pfds.size(), static_cast<int>((wait_us + 999) / 1000));
+        if (pfds[1].revents & POLLIN) in_->handle(0);
+        for (std::size_t k = 2; k < pfds.size(); ++k) {
+            if (pfds[k].revents == 0) continue;
+            // The callback may remove fds: look the fd up again rather than index fds_.
+            const int fd = pfds[k].fd;
+            for (auto& [f, fn] : fds_)
+                if (f == fd) {
+                    auto copy = fn;
+                    copy();
+                    break;
+                }
+        }
+        now = io::monotonic_us();
+        for (auto& t : timers_) {
+            if (now < t->next_us) continue;
+            t->next_us += t->period_us;
+            if (t->next_us < now) t->next_us = now + t->period_us;  // we were late: do not burst
+            t->fn();
+        }
+    }
+    set_state(State::stopping);
+    notifier_.stopping();
+    publish_status();
+    spdlog::info("stopping");
+    (void)out_.release();  // the alias of in_
+    return 0;
+}
+
+}  // namespace ugv::daemon

@@ -1,0 +1,176 @@
+// The daemon plumbing seen from outside, as systemd and an operator see it.
+#include <catch2/catch.hpp>
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include "ugv/bus/typed.hpp"
+#include "ugv/daemon_status_t.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/raw_bytes_t.hpp"
+#include "ugv_test/process.hpp"
+
+using namespace ugv;
+
+namespace {
+
+class NotifySocket
+{
+public:
+    explicit NotifySocket(const std::string& path) : path_(path)
+    {
+        fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+        sockaddr_un a{};
+        a.sun_family = AF_UNIX;
+        std::snprintf(a.sun_path, sizeof a.sun_path, "%s", path.c_str());
+        REQUIRE(::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0);
+    }
+    ~NotifySocket() { ::close(fd_); }
+    std::string env() const { return "NOTIFY_SOCKET=" + path_; }
+    // Waits for a datagram containing what; returns false on timeout.
+    bool wait_for(const std::string& what, double timeout_s)
+    {
+        const int64_t end = io::monotonic_us() + static_cast<int64_t>(timeout_s * 1e6);
+        while (io::monotonic_us() < end) {
+            pollfd p{fd_, POLLIN, 0};
+            if (::poll(&p, 1, 50) <= 0) continue;
+            char buf[512];
+            const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+            if (n <= 0) continue;
+            const std::string msg(buf, static_cast<std::size_t>(n));
+            seen_ += msg + "\n";
+            if (msg.find(what) != std::string::npos) return true;
+        }
+        return false;
+    }
+    const std::string& seen() const { return seen_; }
+
+private:
+    std::string path_;
+    int fd_ = -1;
+    std::string seen_;
+};
+
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+}  // namespace
+
+TEST_CASE("daemon: READY, WATCHDOG while healthy, status on LCM, and STOPPING with a clean exit on SIGTERM")
+{
+    test::TempDir dir;
+    NotifySocket notify(dir / "notify");
+    const std::string url = test::lcm_url(7611);
+    auto listen = bus::open_live(url);
+    std::vector<daemon_status_t> status;
+    bus::subscribe<daemon_status_t>(*listen, "STATUS_DAEMON", [&](const std::string&, const daemon_status_t& m, int64_t) {
+        status.push_back(m);
+    });
+    test::Process d({test::bin("ugv-test-daemon"), "--lcm-url", url, "--instance", "bench"}, dir / "out", dir / "err",
+                    {notify.env(), "WATCHDOG_USEC=400000"});
+    // No WATCHDOG_PID: sd_watchdog_enabled() then accepts the watchdog for any pid.
+    REQUIRE(notify.wait_for("READY=1", 10));
+    REQUIRE(notify.wait_for("WATCHDOG=1", 5));
+    REQUIRE(test::wait_until([&] { listen->handle(20); return status.size() >= 2; }, 10));
+    const daemon_status_t& s = status.back();
+    CHECK(s.name == "ugv-test-daemon");
+    CHECK(s.instance == "bench");
+    CHECK(s.pid == d.pid());
+    CHECK(s.state == daemon_status_t::STATE_RUNNING);
+    REQUIRE(s.ncounters >= 1);
+    CHECK(s.counter_names[0] == "ticks");
+    CHECK(s.counter_values[0] > 0);
+    CHECK(s.seq == status.front().seq + static_cast<int64_t>(status.size()) - 1);
+
+    const int64_t t0 = io::monotonic_us();
+    d.signal(SIGTERM);
+    CHECK(notify.wait_for("STOPPING=1", 2));
+    CHECK(d.wait_exit(2.0) == 0);
+    CHECK(io::monotonic_us() - t0 < 1'000'000);
+}
+
+TEST_CASE("daemon: no WATCHDOG ping while unhealthy, so systemd would restart it")
+{
+    test::TempDir dir;
+    NotifySocket notify(dir / "notify");
+    test::write_file(dir / "d.toml", "healthy = false\n");
+    test::Process d({test::bin("ugv-test-daemon"), "--config", dir / "d.toml", "--lcm-url", test::lcm_url(7612)},
+                    dir / "out", dir / "err", {notify.env(), "WATCHDOG_USEC=200000"});
+    REQUIRE(notify.wait_for("READY=1", 10));
+    CHECK_FALSE(notify.wait_for("WATCHDOG=1", 1.0));
+    d.signal(SIGINT);
+    CHECK(d.wait_exit(2.0) == 0);
+}
+
+TEST_CASE("daemon: config errors exit 2 with one line FILE: KEY: why")
+{
+    test::TempDir dir;
+    const auto run_with = [&](const std::string& toml) {
+        test::write_file(dir / "d.toml", toml);
+        const int code = test::run({test::bin("ugv-test-daemon"), "--config", dir / "d.toml"}, dir / "o", dir / "e");
+        return std::make_pair(code, test::read_file(dir / "e"));
+    };
+    auto [code, err] = run_with("period_ms = 0\n");
+    CHECK(code == 2);
+    CHECK(err == dir / "d.toml" + ": period_ms: 0 is out of range [1, 10000]\n");
+    std::tie(code, err) = run_with("chanel = \"X\"\n");
+    CHECK(code == 2);
+    CHECK(err == dir / "d.toml" + ": chanel: unknown key\n");
+    std::tie(code, err) = run_with("[realtime]\nfifo_priority = 120\n");
+    CHECK(code == 2);
+    CHECK(err == dir / "d.toml" + ": realtime.fifo_priority: 120 is out of range [0, 99]\n");
+    code = test::run({test::bin("ugv-test-daemon"), "--config", dir / "missing.toml"}, dir / "o", dir / "e");
+    CHECK(code == 2);
+    CHECK(test::read_file(dir / "e") == dir / "missing.toml" + ": -: cannot read the file\n");
+    code = test::run({test::bin("ugv-test-daemon"), "--lcm-url", "bogus://"}, dir / "o", dir / "e");
+    CHECK(code == 2);
+    CHECK(test::read_file(dir / "e").find("ugv-test-daemon: LCM cannot be created for 'bogus://'") != std::string::npos);
+}
+
+TEST_CASE("daemon: --print-config prints the effective config, --version the version")
+{
+    test::TempDir dir;
+    test::write_file(dir / "d.toml", "period_ms = 20\n");
+    REQUIRE(test::run({test::bin("ugv-test-daemon"), "--config", dir / "d.toml", "--print-config"}, dir / "o", dir / "e") == 0);
+    const std::string out = test::read_file(dir / "o");
+    CHECK(out.find("period_ms = 20") != std::string::npos);
+    CHECK(out.find("channel = 'TICK'") != std::string::npos);
+    CHECK(out.find("status_channel = 'STATUS_DAEMON'") != std::string::npos);
+    REQUIRE(test::run({test::bin("ugv-test-daemon"), "--version"}, dir / "o", dir / "e") == 0);
+    CHECK(first_line(test::read_file(dir / "o")) == "ugv-test-daemon 0.1.0");
+}
+
+TEST_CASE("daemon: --replay LOG --out LOG is deterministic, byte for byte")
+{
+    test::TempDir dir;
+    {
+        int64_t t = 1000;
+        auto w = bus::open_log_writer(dir / "in.lcm", [&] { return t; });
+        for (int k = 0; k < 100; ++k) {
+            raw_bytes_t m{};
+            m.utime = t;
+            m.seq = k;
+            m.device = "x";
+            m.nbytes = 3;
+            m.data = {1, 2, static_cast<uint8_t>(k)};
+            t += 1000;
+            REQUIRE(bus::publish(*w, k % 3 ? "IN" : "NOISE", m));
+        }
+    }
+    for (const char* out : {"a.lcm", "b.lcm"})
+        REQUIRE(test::run({test::bin("ugv-test-daemon"), "--replay", dir / "in.lcm", "--out", dir / out}, dir / "o",
+                          dir / "e") == 0);
+    const std::string a = test::read_file(dir / "a.lcm");
+    CHECK(!a.empty());
+    CHECK(a == test::read_file(dir / "b.lcm"));
+    auto r = bus::open_log_replay(dir / "a.lcm");
+    std::vector<int64_t> seqs;
+    bus::subscribe<raw_bytes_t>(*r, "OUT", [&](const std::string&, const raw_bytes_t& m, int64_t) { seqs.push_back(m.seq); });
+    while (r->handle(0) == bus::HandleResult::handled) {
+    }
+    REQUIRE(seqs.size() == 66);
+    CHECK(seqs[0] == 2);
+    CHECK(seqs[1] == 4);
+    CHECK(seqs[2] == 8);
+}

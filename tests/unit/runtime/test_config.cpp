@@ -1,0 +1,94 @@
+#include <catch2/catch.hpp>
+
+#include "ugv/runtime/config.hpp"
+#include "ugv_test/process.hpp"
+
+using ugv::runtime::Config;
+using ugv::runtime::ConfigError;
+
+namespace {
+// The one line a daemon prints for text, or "" when the text is valid for the reader below.
+std::string error_of(const std::string& text)
+{
+    try {
+        Config c = Config::parse(text, "/etc/ugv/lms.toml");
+        c.get_string("device", "/dev/ttyUSB0");
+        c.get_int("baud", 500000, {9600, 19200, 38400, 500000});
+        c.get_enum("units", "mm", {"mm", "cm"});
+        c.get_double("height_m", 0.87, 0.0, 5.0);
+        c.get_bool("publish_raw", false);
+        c.get_int("sensor_count", 1, 1, 4);
+        c.get_doubles("offset_m", {0, 0, 0}, 3, -10, 10);
+        Config mount = c.section("mount");
+        mount.get_double("tilt_deg", 0, -90, 90);
+        c.finish();
+        return "";
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+}
+}  // namespace
+
+TEST_CASE("a valid file reads through, and defaults fill the rest")
+{
+    Config c = Config::parse("device = \"/dev/ugv/lms\"\nheight_m = 1\n[mount]\ntilt_deg = -12.5\n", "x.toml");
+    CHECK(c.get_string("device", "") == "/dev/ugv/lms");
+    CHECK(c.get_double("height_m", 0.87, 0, 5) == 1.0);  // an integer is a fine number
+    CHECK(c.get_int("baud", 500000, {9600, 500000}) == 500000);
+    Config m = c.section("mount");
+    CHECK(m.get_double("tilt_deg", 0, -90, 90) == -12.5);
+    CHECK_NOTHROW(c.finish());
+    CHECK(error_of("") == "");
+}
+
+TEST_CASE("every kind of config error is one line FILE: KEY: why")
+{
+    CHECK(error_of("baud = 57600") == "/etc/ugv/lms.toml: baud: 57600 is not one of 9600, 19200, 38400, 500000");
+    CHECK(error_of("baud = \"fast\"") == "/etc/ugv/lms.toml: baud: must be an integer, not a string");
+    CHECK(error_of("device = 3") == "/etc/ugv/lms.toml: device: must be a string, not an integer");
+    CHECK(error_of("units = \"inch\"") == "/etc/ugv/lms.toml: units: \"inch\" is not one of \"mm\", \"cm\"");
+    CHECK(error_of("height_m = 7.5") == "/etc/ugv/lms.toml: height_m: 7.5 is out of range [0, 5]");
+    CHECK(error_of("height_m = nan") == "/etc/ugv/lms.toml: height_m: must be a finite number");
+    CHECK(error_of("height_m = true") == "/etc/ugv/lms.toml: height_m: must be a number, not a boolean");
+    CHECK(error_of("publish_raw = 1") == "/etc/ugv/lms.toml: publish_raw: must be true or false, not an integer");
+    CHECK(error_of("sensor_count = 9") == "/etc/ugv/lms.toml: sensor_count: 9 is out of range [1, 4]");
+    CHECK(error_of("offset_m = [1, 2]") == "/etc/ugv/lms.toml: offset_m: must have 3 elements, not 2");
+    CHECK(error_of("offset_m = [1, 2, 30]") == "/etc/ugv/lms.toml: offset_m: element 2 (30) is out of range [-10, 10]");
+    CHECK(error_of("devise = \"/dev/ttyS0\"") == "/etc/ugv/lms.toml: devise: unknown key");
+    CHECK(error_of("[mount]\ntilt_deg = 100") == "/etc/ugv/lms.toml: mount.tilt_deg: 100 is out of range [-90, 90]");
+    CHECK(error_of("[mount]\ntilt = 1") == "/etc/ugv/lms.toml: mount.tilt: unknown key");
+    CHECK(error_of("mount = 3") == "/etc/ugv/lms.toml: mount: must be a table ([mount]), not an integer");
+    CHECK(error_of("baud = ") == "/etc/ugv/lms.toml: -: Error while parsing key-value pair: encountered end-of-file (line 1, column 8)");
+}
+
+TEST_CASE("a missing file is a config error naming the file")
+{
+    CHECK_THROWS_WITH(Config::load("/nonexistent/ugv.toml"), "/nonexistent/ugv.toml: -: cannot read the file");
+}
+
+TEST_CASE("a file on disk loads, and the effective config prints as TOML with defaults")
+{
+    ugv::test::TempDir dir;
+    ugv::test::write_file(dir / "gps.toml", "baud = 115200\n");
+    Config c = Config::load(dir / "gps.toml");
+    CHECK(c.file() == dir / "gps.toml");
+    c.get_int("baud", 9600, 1200, 921600);
+    c.get_string("device", "/dev/ugv/gps");
+    const std::string out = c.effective_toml();
+    CHECK(out.find("baud = 115200") != std::string::npos);
+    CHECK(out.find("device = '/dev/ugv/gps'") != std::string::npos);
+    // What --print-config prints reads back to the same values.
+    Config again = Config::parse(out);
+    CHECK(again.get_int("baud", 0, 0, 1000000) == 115200);
+    CHECK(again.get_string("device", "") == "/dev/ugv/gps");
+}
+
+TEST_CASE("a daemon's own check of a value gives the same one-line form")
+{
+    Config c = Config::parse("min_tilt_deg = 10\nmax_tilt_deg = 5\n", "servo.toml");
+    const double lo = c.get_double("min_tilt_deg", -30, -90, 90);
+    const double hi = c.get_double("max_tilt_deg", 30, -90, 90);
+    REQUIRE(lo > hi);
+    CHECK_THROWS_WITH(c.fail("max_tilt_deg", "must be greater than min_tilt_deg"),
+                      "servo.toml: max_tilt_deg: must be greater than min_tilt_deg");
+}
