@@ -3,6 +3,8 @@ add_library(ugv_warnings INTERFACE)
 target_compile_options(ugv_warnings INTERFACE
   $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wconversion -Wshadow -Wno-sign-conversion>
   $<$<BOOL:${UGV_WERROR}>:-Werror>)
+# Every program prints this with --version.
+target_compile_definitions(ugv_warnings INTERFACE UGV_VERSION="${PROJECT_VERSION}")
 if(UGV_SANITIZE)
   target_compile_options(ugv_warnings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
                                                 -fno-sanitize-recover=undefined)

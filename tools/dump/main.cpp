@@ -21,6 +21,7 @@ int main(int argc, char** argv)
     double timeout_s = 0;
     bool show_unknown = false;
     CLI::App app{"ugv-dump: print ugv LCM messages as JSON lines"};
+    app.set_version_flag("--version", std::string("ugv-dump ") + UGV_VERSION);
     auto* url_opt = app.add_option("--lcm-url", url, "live LCM URL (default: LCM_DEFAULT_URL, else udpm ttl=0)");
     app.add_option("--log", log, "read this LCM log instead of the live bus")->check(CLI::ExistingFile)->excludes(url_opt);
     app.add_option("--channel", channel, "only channels matching this regex (whole name)");

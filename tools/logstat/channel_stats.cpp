@@ -23,7 +23,12 @@ bool read_header(const uint8_t* data, std::size_t size, int64_t& utime, int64_t&
 
 void StreamStats::add(const std::string& channel, const uint8_t* data, std::size_t size, int64_t recv_utime)
 {
-    ChannelStats& s = channels_[channel];
+    channels_[channel].add(data, size, recv_utime);
+}
+
+void ChannelStats::add(const uint8_t* data, std::size_t size, int64_t recv_utime)
+{
+    ChannelStats& s = *this;
     if (s.count == 0) s.first_recv_utime = recv_utime;
     else if (recv_utime - s.last_recv_utime > s.max_interval_us) s.max_interval_us = recv_utime - s.last_recv_utime;
     s.last_recv_utime = recv_utime;

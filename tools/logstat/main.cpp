@@ -14,6 +14,7 @@ int main(int argc, char** argv)
     std::string log, channel = ".*";
     bool json = false;
     CLI::App app{"ugv-logstat: rate, size and sequence gaps per channel of an LCM log"};
+    app.set_version_flag("--version", std::string("ugv-logstat ") + UGV_VERSION);
     app.add_option("log", log, "LCM log file")->required()->check(CLI::ExistingFile);
     app.add_option("--channel", channel, "only channels matching this regex");
     app.add_flag("--json", json, "one JSON object per channel instead of a table");

@@ -21,6 +21,8 @@ struct ChannelStats
     int64_t last_seq = -1;
     int64_t max_interval_us = 0; // largest time between two consecutive messages
 
+    // Counts one message received at recv_utime.
+    void add(const uint8_t* data, std::size_t size, int64_t recv_utime);
     // Messages per second between the first and last message (0 with fewer than 2).
     double rate_hz() const;
 };

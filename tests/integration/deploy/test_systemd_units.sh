@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Every unit we ship: `systemd-analyze verify` prints nothing (it only warns on unknown keys,
+# so any output fails), and `systemd-analyze security --offline=yes` scores each daemon unit
+# at or below 4.0. Checked against a scratch root holding the real install (DESTDIR) and the
+# system's own units, so ExecStart= paths are the installed binaries.
+set -uo pipefail
+build=$1
+root=$(mktemp -d /tmp/ugv-units-XXXXXX)
+trap 'rm -rf "$root"' EXIT
+pass=0 fail=0
+check() { if [ "$1" = ok ]; then pass=$((pass+1)); echo "ok   $2"; else fail=$((fail+1)); echo "FAIL $2"; fi; }
+
+DESTDIR=$root cmake --install "$build" --prefix /usr >/dev/null || { echo "FAIL cmake --install"; exit 1; }
+mkdir -p "$root/usr/lib/systemd" "$root/etc/systemd/system"
+cp -a /usr/lib/systemd/system "$root/usr/lib/systemd/"
+cp /usr/bin/lcm-logger "$root/usr/bin/"   # from liblcm-bin, run by ugv-logger.service
+units_dir=$root/usr/lib/systemd/system
+mapfile -t units < <(cd "$units_dir" && ls ugv*.service ugv*.target)
+[ ${#units[@]} -ge 9 ] && check ok "${#units[@]} units installed" || check no "expected >= 9 units, found ${#units[@]}"
+
+for u in "${units[@]}"; do
+  name=$u
+  [[ $u == *@.service ]] && name=${u/@.service/@front.service}   # a template: verify an instance
+  out=$(cd "$units_dir" && systemd-analyze verify --root="$root" "$name" 2>&1)
+  if [ -z "$out" ]; then check ok "verify $name: no output"; else check no "verify $name: $out"; fi
+  [[ $u == *.target ]] && continue
+  line=$(systemd-analyze security --offline=yes --root="$root" "$name" 2>&1 | grep 'Overall exposure level')
+  score=$(sed -E 's/.*: ([0-9.]+) .*/\1/' <<<"$line")
+  if [ -n "$score" ] && awk -v s="$score" 'BEGIN{exit !(s <= 4.0)}'; then check ok "security $name: $score"
+  else check no "security $name: ${line:-no score}"; fi
+done
+# Every service is grouped under ugv.target and restarts with limits.
+for u in "${units[@]}"; do
+  [[ $u == *.service ]] || continue
+  f=$units_dir/$u
+  grep -q '^PartOf=ugv.target' "$f" && grep -q '^WantedBy=ugv.target' "$f" && grep -q '^Restart=on-failure' "$f" \
+    && grep -q '^StartLimitBurst=' "$f" && check ok "$u: PartOf/WantedBy ugv.target, Restart=on-failure, start limit" \
+    || check no "$u: missing PartOf/WantedBy/Restart/StartLimit"
+  if [[ $u != ugv-logger.service ]]; then
+    grep -q '^Type=notify' "$f" && grep -q '^WatchdogSec=' "$f" && check ok "$u: Type=notify with WatchdogSec" \
+      || check no "$u: not Type=notify with a watchdog"
+    grep -q '^RestrictRealtime=yes' "$f" && check no "$u: RestrictRealtime=yes would forbid SCHED_FIFO" \
+      || check ok "$u: real-time scheduling allowed"
+  fi
+done
+grep -q -- '--lcm-url=' "$units_dir/ugv-logger.service" && check ok "ugv-logger uses --lcm-url= (not the broken -l)" \
+  || check no "ugv-logger must use --lcm-url="
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
