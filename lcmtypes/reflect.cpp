@@ -83,19 +83,55 @@ private:
 };
 
 using PrintFn = bool (*)(const void*, std::size_t, std::string&);
+using FitsFn = bool (*)(const uint8_t*, std::size_t, std::size_t&);
 
 struct TypeEntry
 {
     const char* name;
     int64_t hash;
     PrintFn print;
+    FitsFn fits;  // the body (after the hash) is well formed
 };
+
+// Helpers of the generated fits_* functions: bounds-checked walking of LCM's encoding.
+bool skip(std::size_t n, std::size_t& p, std::size_t bytes)
+{
+    if (bytes > n - p) return false;
+    p += bytes;
+    return true;
+}
+
+bool skip(std::size_t n, std::size_t& p, std::size_t count, std::size_t elem)
+{
+    if (count > (n - p) / elem) return false;
+    p += count * elem;
+    return true;
+}
+
+bool read_int(const uint8_t* b, std::size_t n, std::size_t& p, std::size_t bytes, int64_t& v)
+{
+    if (bytes > n - p) return false;
+    uint64_t u = 0;
+    for (std::size_t k = 0; k < bytes; ++k) u = (u << 8) | b[p + k];
+    const unsigned shift = static_cast<unsigned>(64 - 8 * bytes);  // sign-extend
+    v = static_cast<int64_t>(u << shift) >> shift;
+    p += bytes;
+    return true;
+}
+
+bool skip_string(const uint8_t* b, std::size_t n, std::size_t& p)
+{
+    int64_t len = 0;
+    // The length counts the terminating NUL: 0 is malformed (lcm-gen would throw).
+    return read_int(b, n, p, 4, len) && len >= 1 && skip(n, p, static_cast<std::size_t>(len));
+}
 
 template <typename T, void (*Json)(JsonWriter&, const T&)>
 bool decode_and_print(const void* data, std::size_t size, std::string& json)
 {
     T msg{};  // value-initialised: decode fills every field, but the compiler cannot see that
     if (size > static_cast<std::size_t>(INT32_MAX)) return false;
+    // Only called after well_formed(): decode cannot throw or over-allocate here.
     const int n = msg.decode(data, 0, static_cast<int>(size));
     if (n < 0 || static_cast<std::size_t>(n) != size) return false;
     JsonWriter w;
@@ -115,18 +151,39 @@ std::vector<TypeInfo> all_types()
     return out;
 }
 
-DecodeResult to_json(const void* data, std::size_t size, std::string& type_name, std::string& json)
+namespace {
+const TypeEntry* find_entry(const void* data, std::size_t size)
 {
-    if (size < 8) return DecodeResult::malformed;
+    if (size < 8) return nullptr;
     const auto* b = static_cast<const uint8_t*>(data);
     uint64_t h = 0;
     for (int k = 0; k < 8; ++k) h = (h << 8) | b[k];
-    for (const auto& e : type_table()) {
-        if (static_cast<uint64_t>(e.hash) != h) continue;
-        type_name = e.name;
-        return e.print(data, size, json) ? DecodeResult::ok : DecodeResult::malformed;
-    }
-    return DecodeResult::unknown_type;
+    for (const auto& e : type_table())
+        if (static_cast<uint64_t>(e.hash) == h) return &e;
+    return nullptr;
+}
+
+bool body_fits(const TypeEntry& e, const void* data, std::size_t size)
+{
+    std::size_t p = 8;
+    return e.fits(static_cast<const uint8_t*>(data), size, p) && p == size;
+}
+}  // namespace
+
+bool well_formed(const void* data, std::size_t size)
+{
+    const TypeEntry* e = find_entry(data, size);
+    return e && body_fits(*e, data, size);
+}
+
+DecodeResult to_json(const void* data, std::size_t size, std::string& type_name, std::string& json)
+{
+    if (size < 8) return DecodeResult::malformed;
+    const TypeEntry* e = find_entry(data, size);
+    if (!e) return DecodeResult::unknown_type;
+    type_name = e->name;
+    if (!body_fits(*e, data, size)) return DecodeResult::malformed;
+    return e->print(data, size, json) ? DecodeResult::ok : DecodeResult::malformed;
 }
 
 std::string json_quote(std::string_view s)

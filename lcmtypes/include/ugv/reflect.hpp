@@ -28,6 +28,13 @@ enum class DecodeResult { ok, unknown_type, malformed };
 // type_name and json (one JSON object with every field; NaN and Inf print as null).
 DecodeResult to_json(const void* data, std::size_t size, std::string& type_name, std::string& json);
 
+// True when the bytes are exactly one well-formed message of a ugv type: its fingerprint is
+// known, every string length is at least 1, every array count is non-negative, and nothing
+// reaches past the end. Check this before lcm-gen's decode(): in LCM 1.3.1 it throws
+// std::length_error on a zero string length and allocates whatever a count says (found by
+// fuzz_lcm_decode).
+bool well_formed(const void* data, std::size_t size);
+
 // A JSON string literal for s, quotes included.
 std::string json_quote(std::string_view s);
 

@@ -75,3 +75,52 @@ TEST_CASE("JSON strings are escaped")
 {
     CHECK(reflect::json_quote("a\"b\\c\n\x01") == "\"a\\\"b\\\\c\\n\\u0001\"");
 }
+
+TEST_CASE("well_formed catches lengths that would make lcm-gen's decode throw or over-allocate")
+{
+    const auto samples = encoded_samples();
+    for (const auto& [ch, bytes] : samples) {
+        INFO(ch);
+        CHECK(reflect::well_formed(bytes.data(), bytes.size()));
+        CHECK_FALSE(reflect::well_formed(bytes.data(), bytes.size() - 1));
+    }
+    // laser_scan_t: hash(8) utime(8) seq(8) then the sensor_id string length (int32).
+    auto scan = samples.at("SAMPLE_laser_scan_t");
+    auto zero_len = scan;
+    zero_len[24] = zero_len[25] = zero_len[26] = zero_len[27] = 0;  // a zero string length
+    CHECK_FALSE(reflect::well_formed(zero_len.data(), zero_len.size()));
+    std::string type, json;
+    CHECK(reflect::to_json(zero_len.data(), zero_len.size(), type, json) == reflect::DecodeResult::malformed);
+    // nranges sits after sensor_id (4 + 6 bytes) and 5 floats and an int32: make it huge.
+    auto huge = scan;
+    const std::size_t nranges_at = 24 + 4 + 6 + 5 * 4 + 4;
+    huge[nranges_at] = 0x7f;
+    CHECK_FALSE(reflect::well_formed(huge.data(), huge.size()));
+    huge[nranges_at] = 0xff;  // negative
+    CHECK_FALSE(reflect::well_formed(huge.data(), huge.size()));
+}
+
+TEST_CASE("typed subscriptions count malformed lengths as decode failures, not handler errors")
+{
+    test::TempDir dir;
+    auto samples = encoded_samples();
+    auto bad = samples.at("SAMPLE_laser_scan_t");
+    bad[24] = bad[25] = bad[26] = bad[27] = 0;
+    {
+        auto w = bus::open_log_writer(dir / "bad.lcm", [] { return int64_t{0}; });
+        w->publish("LMS_SCAN", bad.data(), bad.size());
+        const auto& good = samples.at("SAMPLE_laser_scan_t");
+        w->publish("LMS_SCAN", good.data(), good.size());
+    }
+    auto r = bus::open_log_replay(dir / "bad.lcm");
+    int got = 0;
+    bus::subscribe<laser_scan_t>(*r, "LMS_SCAN", [&](const std::string&, const laser_scan_t& m, int64_t) {
+        CHECK(m.sensor_id == "front");
+        ++got;
+    });
+    while (r->handle(0) == bus::HandleResult::handled) {
+    }
+    CHECK(got == 1);
+    CHECK(r->counters().decode_failures == 1);
+    CHECK(r->counters().handler_errors == 0);
+}

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ugv/bus/bus.hpp"
+#include "ugv/reflect.hpp"
 
 namespace ugv::bus {
 
@@ -24,7 +25,9 @@ bool publish(Bus& bus, const std::string& channel, const T& msg)
 }
 
 // handler(channel, message, recv_utime). A message that does not decode as T (wrong type,
-// truncated, random bytes) is counted in bus.counters().decode_failures and dropped.
+// truncated, random bytes, lengths that lie) is counted in bus.counters().decode_failures and
+// dropped. The bytes are checked against the type's schema first (reflect::well_formed),
+// because lcm-gen's decode() throws or over-allocates on some malformed input.
 template <typename T>
 void subscribe(Bus& bus, const std::string& channel_regex,
                std::function<void(const std::string&, const T&, int64_t)> handler)
@@ -33,7 +36,7 @@ void subscribe(Bus& bus, const std::string& channel_regex,
     bus.subscribe(channel_regex, [b, handler = std::move(handler)](const std::string& channel, const uint8_t* data,
                                                                    std::size_t size, int64_t recv_utime) {
         T msg;
-        if (size > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+        if (size > static_cast<std::size_t>(std::numeric_limits<int>::max()) || !reflect::well_formed(data, size) ||
             msg.decode(data, 0, static_cast<int>(size)) != static_cast<int>(size)) {
             ++b->counters().decode_failures;
             return;
