@@ -149,9 +149,11 @@ void Daemon::start()
         if (replaying_) {
             in_ = bus::open_log_replay(replay_path_);
             bus::Bus* in = in_.get();
-            out_ = bus::open_log_writer(out_path_, [in] { return in->now_utime(); });
+            out_log_ = bus::open_log_writer(out_path_, [in] { return in->now_utime(); });
+            out_ = out_log_.get();
         } else {
             in_ = bus::open_live(lcm_url_.empty() ? bus::default_url() : lcm_url_);
+            out_ = in_.get();  // one LCM instance both ways
         }
     } catch (const bus::BusError& e) {
         exit_config_error(options_.name + ": " + e.what());
@@ -240,12 +242,7 @@ int Daemon::run()
         }
         spdlog::info("replay done: {} messages dispatched, {} undecodable", in_->counters().received,
                      in_->counters().decode_failures);
-        out_.reset();  // closes the output log
         return 0;
-    }
-    if (!out_) {
-        // Live: one LCM instance both ways. The out() alias must not own it twice.
-        out_.reset(in_.get());
     }
     add_timer(1'000'000, [this] { publish_status(); });
     const int64_t wd = notifier_.watchdog_interval_us();
@@ -287,7 +284,6 @@ int Daemon::run()
     notifier_.stopping();
     publish_status();
     spdlog::info("stopping");
-    (void)out_.release();  // the alias of in_
     return 0;
 }
 

@@ -1,5 +1,6 @@
-// Any bytes arriving on a daemon's input channel: decoding as every ugv type (by fingerprint,
-// as ugv-dump does, and forced, as a typed subscription does) never crashes or over-reads.
+// Any bytes arriving on a daemon's input channel, decoded as every ugv type the way our code
+// does it (reflect::to_json as ugv-dump does; well_formed() then decode() as a typed
+// subscription does): never a crash, an exception, an over-read or a huge allocation.
 #include <string>
 
 #include "ugv/daemon_status_t.hpp"
@@ -20,6 +21,7 @@ namespace {
 template <typename T>
 void decode_as(const uint8_t* data, size_t size)
 {
+    if (!ugv::reflect::well_formed(data, size)) return;
     T msg;
     (void)msg.decode(data, 0, static_cast<int>(size));
 }

@@ -61,8 +61,11 @@ public:
     // --print-config, applies [realtime], opens the bus (exit 2 with one line on failure).
     void start();
 
-    bus::Bus& bus() { return *in_; }   // subscribe here (live, or the --replay log)
-    bus::Bus& out() { return *out_; }  // publish here (live, or the --out log)
+    bus::Bus& bus() { return *in_; }  // subscribe here (live, or the --replay log)
+    // Publish here (live, or the --out log). Valid until the Daemon is destroyed, also after
+    // run() returns (to flush what is pending at the end of a replay); the --out log is
+    // closed by the destructor.
+    bus::Bus& out() { return *out_; }
     bool replaying() const { return replaying_; }
     const std::string& instance() const { return instance_; }
     const std::string& name() const { return options_.name; }
@@ -96,7 +99,8 @@ private:
     Options options_;
     std::unique_ptr<runtime::Config> config_;
     std::unique_ptr<bus::Bus> in_;
-    std::unique_ptr<bus::Bus> out_;
+    std::unique_ptr<bus::Bus> out_log_;  // --out (replay only)
+    bus::Bus* out_ = nullptr;            // in_ (live) or out_log_ (replay)
     std::string lcm_url_, replay_path_, out_path_, instance_, log_level_;
     bool print_config_ = false;
     bool replaying_ = false;

@@ -1,0 +1,26 @@
+// ugv-nodscan configuration keys (docs/nodscan.md lists them all).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "ugv/nodscan/scan_assembler.hpp"
+#include "ugv/runtime/config.hpp"
+
+namespace ugv::nodscan_daemon {
+
+struct NodscanConfig
+{
+    std::string scan_channel = "LMS_SCAN";
+    std::string servo_channel = "SERVO_STATE";
+    std::string channel = "POINTS";
+    std::string sensor_id;  // only scans from this laser ("" = any)
+    nodscan::AssemblerConfig assembler;
+    int64_t max_wait_us = 100'000;    // how long a scan may wait for a bracketing servo sample
+    int64_t servo_history_us = 2'000'000;
+    std::size_t max_pending_scans = 8;
+};
+
+NodscanConfig read_config(runtime::Config& cfg);
+
+}  // namespace ugv::nodscan_daemon

@@ -1,0 +1,272 @@
+#include "servo_app.hpp"
+
+#include <cmath>
+#include <spdlog/spdlog.h>
+
+#include "ugv/bus/typed.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/servo_state_t.hpp"
+
+namespace ugv::servo {
+namespace {
+
+nodscan::NodCommand from_message(const servo_command_t& m, double scan_period_s)
+{
+    nodscan::NodCommand c;
+    switch (m.profile) {
+    case servo_command_t::PROFILE_STOP: c.kind = nodscan::NodKind::stop; break;
+    case servo_command_t::PROFILE_HOLD: c.kind = nodscan::NodKind::hold; break;
+    case servo_command_t::PROFILE_CONSTANT_RATE: c.kind = nodscan::NodKind::constant_rate; break;
+    case servo_command_t::PROFILE_UNIFORM_GROUND_SPACING: c.kind = nodscan::NodKind::uniform_ground_spacing; break;
+    default: c.kind = static_cast<nodscan::NodKind>(-1); break;
+    }
+    c.hold_angle_rad = m.hold_angle;
+    c.min_tilt_rad = m.min_tilt;
+    c.max_tilt_rad = m.max_tilt;
+    c.rate_rad_s = m.rate;
+    c.ground_spacing_m = m.ground_spacing;
+    c.sensor_height_m = m.sensor_height;
+    c.scan_period_s = scan_period_s;
+    return c;
+}
+
+}  // namespace
+
+ServoApp::ServoApp(daemon::Daemon& d, ServoConfig config)
+    : d_(d),
+      config_(std::move(config)),
+      transport_(io::make_can_transport(config_.transport, config_.bitrate)),
+      drive_(config_.drive),
+      nod_(config_.nod),
+      backoff_(100'000, 2'000'000)
+{
+    for (const char* n : {"sdo_timeouts", "sdo_aborts", "emcy", "heartbeat_losses", "faults", "fault_resets",
+                          "enable_failures", "bus_errors", "reconnects", "reinits", "tx_failures",
+                          "setpoint_timeouts", "commands_accepted", "commands_refused", "samples"})
+        d_.counters()[n] = 0;
+}
+
+double ServoApp::now_s() const { return static_cast<double>(io::monotonic_us()) * 1e-6; }
+
+void ServoApp::start()
+{
+    bus::subscribe<servo_command_t>(d_.bus(), config_.command_channel,
+                                    [this](const std::string&, const servo_command_t& m, int64_t) { on_command(m); });
+    d_.add_timer(config_.control_period_us, [this] { control_tick(); });
+    d_.set_health_timeout_us(500'000);
+    open_transport();
+}
+
+void ServoApp::open_transport()
+{
+    if (!transport_->open()) {
+        const int64_t wait = backoff_.next();
+        retry_at_us_ = io::monotonic_us() + wait;
+        log_.log(spdlog::level::warn, "open", transport_->last_error(), io::monotonic_us());
+        d_.set_state(daemon::State::degraded, transport_->last_error());
+        return;
+    }
+    transport_open_ = true;
+    restart_scheduled_ = false;
+    if (ever_opened_) ++reconnects_;
+    ever_opened_ = true;
+    registered_fd_ = transport_->fd();
+    d_.add_fd(registered_fd_, [this] { drain_transport(); });
+    spdlog::info("{} open at {} bit/s; configuring node {}", transport_->describe(), config_.bitrate,
+                 int{config_.drive.node_id});
+    drive_.start(io::monotonic_us());
+    flush_outgoing();
+}
+
+void ServoApp::close_transport(const std::string& why)
+{
+    if (registered_fd_ >= 0) d_.remove_fd(registered_fd_);
+    registered_fd_ = -1;
+    transport_->close();
+    transport_open_ = false;
+    was_operational_ = false;
+    retry_at_us_ = io::monotonic_us() + backoff_.next();
+    d_.set_state(daemon::State::degraded, why);
+}
+
+void ServoApp::reinitialise(const std::string& why)
+{
+    ++reinits_;
+    d_.notify_status("DEGRADED: " + why);
+    was_operational_ = false;
+    d_.set_state(daemon::State::degraded, why);
+    retry_at_us_ = io::monotonic_us() + backoff_.next();
+}
+
+void ServoApp::drain_transport()
+{
+    for (int guard = 0; guard < 1000 && transport_open_; ++guard) {
+        const io::CanReceive r = transport_->receive(0);
+        if (r.status == io::CanReceive::Status::timeout) break;
+        if (r.status == io::CanReceive::Status::frame) {
+            drive_.on_frame(r.frame, io::monotonic_us(), r.utime);
+            continue;
+        }
+        if (r.status == io::CanReceive::Status::bus_error) {
+            // Bus-off or an adapter error: the controller needs an explicit restart.
+            ++bus_errors_;
+            log_.log(spdlog::level::warn, "bus", "bus error: " + r.detail + "; restarting the CAN interface",
+                     io::monotonic_us());
+            close_transport("bus error: " + r.detail);
+            break;
+        }
+        log_.log(spdlog::level::warn, "closed", "transport lost: " + r.detail, io::monotonic_us());
+        close_transport("transport lost: " + r.detail);
+        break;
+    }
+    flush_outgoing();
+    publish_samples();
+    log_events();
+}
+
+void ServoApp::control_tick()
+{
+    const int64_t now = io::monotonic_us();
+    if (!transport_open_) {
+        if (now >= retry_at_us_) open_transport();
+        sync_counters();
+        return;
+    }
+    drain_transport();  // the slcan transport may hold decoded frames the fd does not show
+    if (!transport_open_) return;
+    drive_.tick(now);
+    const auto phase = drive_.phase();
+    if (phase == canopen::Drive::Phase::failed) {
+        if (!restart_scheduled_) {
+            reinitialise(drive_.failure());  // DEGRADED, and a restart after the back-off
+            restart_scheduled_ = true;
+        } else if (now >= retry_at_us_) {
+            spdlog::info("re-initialising node {}", int{config_.drive.node_id});
+            restart_scheduled_ = false;
+            drive_.start(now);
+        }
+    } else if (drive_.operational()) {
+        const auto last = drive_.last_sample();
+        const double angle = last ? last->angle_rad : 0.0;
+        if (!was_operational_) {
+            if (!nod_.started()) {
+                if (auto why = nod_.apply(config_.default_profile, now_s(), angle)) spdlog::error("default profile: {}", *why);
+            } else {
+                nod_.resume(now_s(), angle);
+            }
+            backoff_.reset();
+            was_operational_ = true;
+            d_.ready();
+            d_.notify_status("node " + std::to_string(config_.drive.node_id) + " operation enabled, profile " +
+                             nodscan::to_string(nod_.kind()));
+        }
+        const auto out = nod_.update(now_s(), angle);
+        drive_.command(out.angle_rad, out.speed_rad_s);
+    } else if (was_operational_ && phase == canopen::Drive::Phase::enabling) {
+        d_.set_state(daemon::State::degraded, "drive left operation enabled (fault)");
+        was_operational_ = false;
+    }
+    flush_outgoing();
+    publish_samples();
+    log_events();
+    sync_counters();
+}
+
+void ServoApp::flush_outgoing()
+{
+    for (const auto& f : drive_.take_outgoing()) {
+        if (!transport_open_) break;
+        if (!transport_->send(f)) {
+            ++tx_failures_;  // e.g. ENOBUFS on a busy bus: the session's timeouts retry
+            log_.log(spdlog::level::warn, "tx", "send failed: " + transport_->last_error(), io::monotonic_us());
+        }
+    }
+}
+
+void ServoApp::publish_samples()
+{
+    for (const auto& s : drive_.take_samples()) {
+        servo_state_t m;
+        m.utime = s.utime;
+        m.seq = seq_++;
+        m.angle = s.angle_rad;
+        m.velocity = s.velocity_rad_s;
+        m.target = s.target_rad;
+        m.profile = static_cast<int8_t>(nod_.kind());
+        m.cia402_state = static_cast<int8_t>(s.state);
+        m.statusword = static_cast<int16_t>(s.statusword);
+        m.fault = s.state == canopen::cia402::State::fault || s.state == canopen::cia402::State::fault_reaction_active;
+        m.fault_code = drive_.last_emcy_code();
+        bus::publish(d_.out(), config_.channel, m);
+        ++samples_;
+        if (drive_.operational()) d_.mark_alive();
+    }
+}
+
+void ServoApp::log_events()
+{
+    for (const auto& e : drive_.take_events()) {
+        const auto level = e.level == canopen::DriveEvent::Level::error     ? spdlog::level::err
+                           : e.level == canopen::DriveEvent::Level::warning ? spdlog::level::warn
+                                                                            : spdlog::level::info;
+        log_.log(level, e.text.substr(0, 24), e.text, io::monotonic_us());
+    }
+}
+
+void ServoApp::on_command(const servo_command_t& msg)
+{
+    const auto cmd = from_message(msg, config_.default_profile.scan_period_s);
+    const auto last = drive_.last_sample();
+    if (auto why = nod_.apply(cmd, now_s(), last ? last->angle_rad : 0.0)) {
+        ++commands_refused_;
+        spdlog::warn("SERVO_COMMAND refused: {}", *why);
+        return;
+    }
+    ++commands_accepted_;
+    spdlog::info("profile {}", nodscan::to_string(cmd.kind));
+}
+
+void ServoApp::sync_counters()
+{
+    const auto c = drive_.counters();
+    auto& k = d_.counters();
+    k["sdo_timeouts"] = static_cast<int64_t>(c.sdo_timeouts);
+    k["sdo_aborts"] = static_cast<int64_t>(c.sdo_aborts);
+    k["emcy"] = static_cast<int64_t>(c.emcy);
+    k["heartbeat_losses"] = static_cast<int64_t>(c.heartbeat_losses);
+    k["faults"] = static_cast<int64_t>(c.faults);
+    k["fault_resets"] = static_cast<int64_t>(c.fault_resets);
+    k["enable_failures"] = static_cast<int64_t>(c.enable_failures);
+    k["setpoint_timeouts"] = static_cast<int64_t>(c.setpoint_timeouts);
+    k["bus_errors"] = static_cast<int64_t>(bus_errors_);
+    k["reconnects"] = static_cast<int64_t>(reconnects_);
+    k["reinits"] = static_cast<int64_t>(reinits_);
+    k["tx_failures"] = static_cast<int64_t>(tx_failures_);
+    k["commands_accepted"] = static_cast<int64_t>(commands_accepted_);
+    k["commands_refused"] = static_cast<int64_t>(commands_refused_);
+    k["samples"] = static_cast<int64_t>(samples_);
+}
+
+void ServoApp::shutdown()
+{
+    if (!transport_open_) return;
+    const int64_t start = io::monotonic_us();
+    drive_.stop(start);
+    flush_outgoing();
+    const auto limit = static_cast<int64_t>(config_.shutdown_timeout_s * 1e6);
+    while (drive_.phase() != canopen::Drive::Phase::stopped && io::monotonic_us() - start < limit) {
+        const io::CanReceive r = transport_->receive(5);
+        if (r.status == io::CanReceive::Status::frame) drive_.on_frame(r.frame, io::monotonic_us(), r.utime);
+        else if (r.status != io::CanReceive::Status::timeout) break;
+        drive_.tick(io::monotonic_us());
+        flush_outgoing();
+    }
+    (void)drive_.take_samples();  // the bus is closed once Daemon::run() has returned
+    log_events();
+    if (drive_.phase() == canopen::Drive::Phase::stopped) spdlog::info("drive halted and disabled");
+    else spdlog::warn("drive did not confirm halt and disable within {:.1f} s", config_.shutdown_timeout_s);
+    transport_->close();
+    transport_open_ = false;
+}
+
+}  // namespace ugv::servo

@@ -1,0 +1,61 @@
+// ugv-servo's adapter: CAN transport <-> canopen::Drive <-> NodController, SERVO_COMMAND in,
+// SERVO_STATE and the status counters out. Runs on the daemon's main loop (the transport's
+// fd plus a control timer); a failed drive session or transport is re-initialised with
+// back-off while the daemon reports DEGRADED.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "nod_controller.hpp"
+#include "servo_config.hpp"
+#include "ugv/canopen/drive.hpp"
+#include "ugv/daemon/daemon.hpp"
+#include "ugv/io/can_transport.hpp"
+#include "ugv/runtime/backoff.hpp"
+#include "ugv/runtime/rate_limited_log.hpp"
+#include "ugv/servo_command_t.hpp"
+
+namespace ugv::servo {
+
+class ServoApp
+{
+public:
+    ServoApp(daemon::Daemon& d, ServoConfig config);
+    // Opens the transport, subscribes, registers the fd and the control timer.
+    void start();
+    // After Daemon::run() returned: halt, then disable, within the shutdown timeout.
+    void shutdown();
+
+private:
+    void open_transport();
+    void close_transport(const std::string& why);
+    void drain_transport();
+    void control_tick();
+    void flush_outgoing();
+    void publish_samples();
+    void log_events();
+    void sync_counters();
+    void on_command(const servo_command_t& msg);
+    void reinitialise(const std::string& why);
+    double now_s() const;
+
+    daemon::Daemon& d_;
+    ServoConfig config_;
+    std::unique_ptr<io::CanTransport> transport_;
+    canopen::Drive drive_;
+    NodController nod_;
+    runtime::Backoff backoff_;
+    runtime::RateLimitedLog log_;
+    bool transport_open_ = false;
+    bool ever_opened_ = false;
+    int registered_fd_ = -1;
+    int64_t retry_at_us_ = 0;       // monotonic; when to reopen / restart
+    bool was_operational_ = false;
+    bool restart_scheduled_ = false;
+    int64_t seq_ = 0;
+    uint64_t bus_errors_ = 0, reconnects_ = 0, reinits_ = 0, tx_failures_ = 0;
+    uint64_t commands_accepted_ = 0, commands_refused_ = 0, samples_ = 0;
+};
+
+}  // namespace ugv::servo

@@ -1,0 +1,28 @@
+// ugv-servo configuration keys (docs/servo.md lists them all).
+#pragma once
+
+#include <string>
+
+#include "nod_controller.hpp"
+#include "ugv/canopen/drive.hpp"
+#include "ugv/nodscan/nod_profile.hpp"
+#include "ugv/runtime/config.hpp"
+
+namespace ugv::servo {
+
+struct ServoConfig
+{
+    std::string transport = "slcan:/dev/ttyACM0@115200";
+    int bitrate = 500000;
+    std::string channel = "SERVO_STATE";
+    std::string command_channel = "SERVO_COMMAND";
+    canopen::DriveConfig drive;
+    NodControllerOptions nod;
+    nodscan::NodCommand default_profile;
+    int64_t control_period_us = 2'000;
+    double shutdown_timeout_s = 0.8;
+};
+
+ServoConfig read_config(runtime::Config& cfg);
+
+}  // namespace ugv::servo

@@ -1,0 +1,154 @@
+// One CiA 402 servo drive in profile position mode, as a session without I/O: feed it the
+// frames the bus delivered and the time, call tick() often (every few ms), and send what
+// take_outgoing() returns. The daemon owns the transport and the retry back-off.
+//
+// Start-up: NMT pre-operational; SDO: supported modes (0x6502 bit 0), heartbeat producer
+// time (0x1017), TPDO1 = statusword + position actual, TPDO2 = velocity actual,
+// RPDO1 = target position + controlword, RPDO2 = profile velocity, mode 1 (0x6060),
+// acceleration/deceleration (0x6083/0x6084); NMT start; on the first TPDO1 the target is set
+// to the actual position (so no stale 0x607A moves the axis) and the state machine is
+// walked to Operation Enabled. A fault is reset and the drive enabled again; a lost heartbeat,
+// a failed SDO or an enable that does not succeed puts the session in Phase::failed.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ugv/canopen/cia402.hpp"
+#include "ugv/canopen/nmt.hpp"
+#include "ugv/canopen/pdo.hpp"
+#include "ugv/canopen/sdo.hpp"
+#include "ugv/canopen/setpoint.hpp"
+#include "ugv/canopen/units.hpp"
+#include "ugv/io/can_frame.hpp"
+
+namespace ugv::canopen {
+
+struct DriveConfig
+{
+    uint8_t node_id = 1;
+    UnitConversion units;
+    double min_angle_rad = -0.5;  // set-points are clamped into [min, max] (the last guard)
+    double max_angle_rad = 0.5;
+    int heartbeat_period_ms = 100;   // written to 0x1017; lost after 3 missed beats
+    int64_t sdo_timeout_us = 200'000;
+    int sdo_retries = 1;
+    int tpdo_period_ms = 10;         // TPDO event timer when there is no SYNC (100 Hz)
+    int64_t sync_period_us = 0;      // > 0: produce SYNC and send TPDOs on every SYNC
+    double acceleration_rad_s2 = 20.0;  // 0x6083 / 0x6084
+    double max_velocity_rad_s = 3.0;    // profile velocity cap
+    int64_t start_timeout_us = 1'000'000;  // NMT start -> first TPDO1
+    cia402::Enabler::Options enabler;
+    int64_t setpoint_timeout_us = 200'000;
+    int64_t halt_timeout_us = 500'000;
+};
+
+struct DriveSample
+{
+    int64_t utime = 0;          // receive time of the TPDO1 that carried the position
+    int32_t counts = 0;
+    double angle_rad = 0.0;
+    double velocity_rad_s = 0.0;  // from the latest TPDO2
+    double target_rad = 0.0;
+    uint16_t statusword = 0;
+    cia402::State state = cia402::State::unknown;
+};
+
+struct DriveEvent
+{
+    enum class Level { info, warning, error };
+    Level level = Level::info;
+    std::string text;
+};
+
+struct DriveCounters
+{
+    uint64_t sdo_timeouts = 0;
+    uint64_t sdo_aborts = 0;
+    uint64_t emcy = 0;
+    uint64_t heartbeat_losses = 0;
+    uint64_t faults = 0;           // entries into Fault (or fault reaction)
+    uint64_t fault_resets = 0;
+    uint64_t enable_failures = 0;
+    uint64_t setpoints_acknowledged = 0;
+    uint64_t setpoint_timeouts = 0;
+    uint64_t tpdo_received = 0;
+};
+
+class Drive
+{
+public:
+    enum class Phase { idle, configuring, starting, enabling, operational, halting, disabling, stopped, failed };
+
+    explicit Drive(DriveConfig config);
+
+    // (Re-)initialises from scratch: drops queued transfers, starts the configuration.
+    void start(int64_t now_us);
+    // Halt, then disable (switch the power stage off). Ends in Phase::stopped.
+    void stop(int64_t now_us);
+
+    void on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime);
+    void tick(int64_t now_us);
+
+    // The next set-point (rad, clamped into the configured limits) and the speed to move
+    // there (rad/s, capped). Sent through the handshake when operational.
+    void command(double angle_rad, double velocity_rad_s);
+
+    std::vector<io::CanFrame> take_outgoing();
+    std::vector<DriveSample> take_samples();
+    std::vector<DriveEvent> take_events();
+
+    Phase phase() const { return phase_; }
+    bool operational() const { return phase_ == Phase::operational; }
+    const std::string& failure() const { return failure_; }
+    DriveCounters counters() const;
+    std::optional<DriveSample> last_sample() const { return last_; }
+    uint16_t last_emcy_code() const { return last_emcy_code_; }
+    const DriveConfig& config() const { return config_; }
+
+    static const char* to_string(Phase phase);
+    // The PDO layout this session configures (also what the emulator must accept).
+    static PdoMapping tpdo1(const DriveConfig& c);
+    static PdoMapping tpdo2(const DriveConfig& c);
+    static PdoMapping rpdo1();
+    static PdoMapping rpdo2();
+
+private:
+    void fail(const std::string& why);
+    void event(DriveEvent::Level level, std::string text);
+    void queue_configuration();
+    void on_tpdo1(uint16_t statusword, int32_t counts, int64_t now_us, int64_t utime);
+    void send_rpdos(bool force);
+
+    DriveConfig config_;
+    uint8_t node_;
+    Phase phase_ = Phase::idle;
+    std::string failure_;
+    SdoClient sdo_;
+    HeartbeatConsumer heartbeat_;
+    cia402::Enabler enabler_;
+    cia402::SetpointHandshake setpoint_;
+    PdoMapping tpdo1_, tpdo2_, rpdo1_, rpdo2_;
+
+    int64_t phase_us_ = 0;
+    int64_t next_sync_us_ = 0;
+    bool config_done_ = false;
+    bool halt_ = false;
+    cia402::State last_state_ = cia402::State::unknown;
+    double velocity_rad_s_ = 0.0;
+    std::optional<DriveSample> last_;
+    uint16_t last_emcy_code_ = 0;
+
+    // What the drive was last sent through the RPDOs (send only changes, and on retries).
+    std::optional<std::pair<int32_t, uint16_t>> sent_rpdo1_;
+    std::optional<uint32_t> sent_velocity_;
+
+    DriveCounters counters_;
+    std::vector<io::CanFrame> out_;
+    std::vector<DriveSample> samples_;
+    std::vector<DriveEvent> events_;
+};
+
+}  // namespace ugv::canopen

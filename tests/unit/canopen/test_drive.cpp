@@ -1,0 +1,291 @@
+// The drive session fed scripted frames: configuration by SDO, NMT start, the enable walk,
+// set-points with the handshake, fault reset, heartbeat loss, halt and disable.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <numbers>
+
+#include "frame_helpers.hpp"
+#include "ugv/canopen/drive.hpp"
+
+using namespace ugv::canopen;
+using canopen_test::frame;
+using canopen_test::text;
+using Catch::Detail::Approx;
+
+namespace {
+
+DriveConfig test_config()
+{
+    DriveConfig c;
+    c.node_id = 2;
+    c.units = UnitConversion{4096.0, 10.0, 0, 1};
+    c.min_angle_rad = -0.2;
+    c.max_angle_rad = 0.8;
+    return c;
+}
+
+// Answers the session's SDO requests like a drive would until the configuration is done.
+// Returns every SDO download the session made, in order; the other frames go to `others`.
+std::vector<SdoRequest> answer_configuration(Drive& d, int64_t& now, uint32_t supported_modes = 0x1,
+                                             int8_t mode_display = 1,
+                                             std::vector<ugv::io::CanFrame>* others = nullptr)
+{
+    std::vector<SdoRequest> writes;
+    for (int i = 0; i < 200 && d.phase() == Drive::Phase::configuring; ++i) {
+        d.tick(now);
+        for (const auto& f : d.take_outgoing()) {
+            const auto req = decode_sdo_request(f, 2);
+            if (!req) {
+                if (others) others->push_back(f);
+                continue;
+            }
+            if (req->kind == SdoRequest::Kind::download) {
+                writes.push_back(*req);
+                d.on_frame(encode_sdo_download_ack(2, req->at), now, now);
+            } else if (req->kind == SdoRequest::Kind::upload) {
+                const uint32_t v = req->at.index == 0x6502 ? supported_modes : static_cast<uint8_t>(mode_display);
+                d.on_frame(encode_sdo_upload_reply(2, req->at, v, req->at.index == 0x6502 ? 4 : 1), now, now);
+            }
+        }
+        now += 1000;
+    }
+    return writes;
+}
+
+std::string tpdo1(uint16_t statusword, int32_t counts)
+{
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "182#%02X%02X%02X%02X%02X%02X", statusword & 0xFF, statusword >> 8, counts & 0xFF,
+                  (counts >> 8) & 0xFF, (counts >> 16) & 0xFF, (static_cast<uint32_t>(counts) >> 24) & 0xFF);
+    return buf;
+}
+
+// The RPDO1 frames (target, controlword) among the outgoing ones, as text.
+std::vector<std::string> rpdo1s(const std::vector<ugv::io::CanFrame>& out)
+{
+    std::vector<std::string> r;
+    for (const auto& f : out)
+        if (f.id == 0x202) r.push_back(text(f));
+    return r;
+}
+
+// Brings a session to Operation Enabled at position `counts`.
+void bring_up(Drive& d, int64_t& now, int32_t counts)
+{
+    d.start(now);
+    answer_configuration(d, now);
+    d.tick(now);
+    d.take_outgoing();
+    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237}) {
+        d.on_frame(frame(tpdo1(sw, counts)), now, now);
+        d.on_frame(frame("702#05"), now, now);
+        now += 10'000;
+        d.tick(now);
+    }
+    d.take_outgoing();
+}
+
+}  // namespace
+
+TEST_CASE("Drive configures by SDO, starts the node and enables with the target at the actual position")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    d.start(now);
+    auto out = d.take_outgoing();
+    REQUIRE(!out.empty());
+    CHECK(text(out[0]) == "000#8002");  // pre-operational before the PDOs are remapped
+    std::vector<ugv::io::CanFrame> others;
+    const auto writes = answer_configuration(d, now, 0x1, 1, &others);
+    // The heartbeat producer time, the four PDO mappings, mode 1 and the accelerations.
+    REQUIRE(writes.size() == 1 + 8 + 7 + 7 + 6 + 3);
+    CHECK(writes[0].at == SdoAddress{0x1017, 0});
+    CHECK(writes[0].value == 100);
+    const auto has = [&](uint16_t index, uint8_t sub, uint32_t value) {
+        return std::any_of(writes.begin(), writes.end(), [&](const SdoRequest& w) {
+            return w.at == SdoAddress{index, sub} && w.value == value;
+        });
+    };
+    CHECK(has(0x1A00, 1, 0x60410010));
+    CHECK(has(0x1A00, 2, 0x60640020));
+    CHECK(has(0x1800, 5, 10));           // TPDO1 every 10 ms
+    CHECK(has(0x1A01, 1, 0x606C0020));
+    CHECK(has(0x1600, 1, 0x607A0020));   // target before controlword
+    CHECK(has(0x1600, 2, 0x60400010));
+    CHECK(has(0x1601, 1, 0x60810020));
+    CHECK(has(0x6060, 0, 1));
+    CHECK(has(0x6083, 0, 130380));  // 20 rad/s^2 * 40960 / 2 pi = 130379.7 counts/s^2
+    REQUIRE(others.size() == 1);
+    CHECK(text(others[0]) == "000#0102");  // NMT start once the mode is confirmed
+    CHECK(d.phase() == Drive::Phase::starting);
+
+    // First TPDO1: switch on disabled at -1234 counts. The target is set to -1234 with shutdown.
+    d.on_frame(frame(tpdo1(0x0250, -1234)), now, 42);
+    out = d.take_outgoing();
+    const auto r = rpdo1s(out);
+    REQUIRE(r.size() == 1);
+    CHECK(r[0] == "202#2EFBFFFF0600");
+    d.on_frame(frame(tpdo1(0x0231, -1234)), now, now);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#2EFBFFFF0700"});
+    d.on_frame(frame(tpdo1(0x0233, -1234)), now, now);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#2EFBFFFF0F00"});
+    d.on_frame(frame(tpdo1(0x0237, -1234)), now, now);
+    CHECK(d.phase() == Drive::Phase::operational);
+
+    const auto samples = d.take_samples();
+    REQUIRE(samples.size() == 4);
+    CHECK(samples[0].utime == 42);
+    CHECK(samples[0].counts == -1234);
+    CHECK(samples[0].angle_rad == Approx(-1234 * 2 * std::numbers::pi / 40960));
+    CHECK(samples[3].state == cia402::State::operation_enabled);
+}
+
+TEST_CASE("Drive: a set-point goes with the handshake; angles are clamped into the limits")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    bring_up(d, now, 0);
+    REQUIRE(d.operational());
+    d.command(0.5, 1.0);  // 0.5 rad = 3259.5 -> 3259 counts? round(0.5 * 40960 / 2pi) = 3259
+    d.tick(now);
+    auto out = d.take_outgoing();
+    REQUIRE(out.size() == 2);
+    CHECK(text(out[0]) == "302#77190000");      // RPDO2: profile velocity 6519 counts/s
+    CHECK(text(out[1]) == "202#BB0C00003F00");  // target 3259, cw 0x3F: enable + new set-point + immediate
+    d.on_frame(frame(tpdo1(0x1237, 10)), now, now);  // acknowledged
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#BB0C00002F00"});
+    d.command(5.0, 100.0);  // beyond the limit and the speed cap: clamped to 0.8 rad, 3 rad/s
+    d.tick(now);
+    CHECK(d.take_outgoing().empty());  // waits for bit 12 to fall
+    d.on_frame(frame(tpdo1(0x0237, 20)), now, now);
+    out = d.take_outgoing();
+    REQUIRE(out.size() == 2);
+    CHECK(text(out[0]) == "302#654C0000");      // 3 rad/s = 19557 counts/s
+    CHECK(text(out[1]) == "202#5F1400003F00");  // 0.8 rad = 5215 counts
+    CHECK(d.counters().setpoints_acknowledged == 1);
+}
+
+TEST_CASE("Drive: a fault is reset with the bit-7 edge and the drive enabled again")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    bring_up(d, now, 100);
+    d.on_frame(frame("082#1186080000000000"), now, now);  // EMCY following error
+    d.on_frame(frame(tpdo1(0x0218, 150)), now, now);
+    CHECK(d.phase() == Drive::Phase::enabling);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#960000000000"});  // hold 150, bit 7 low
+    d.on_frame(frame(tpdo1(0x0218, 150)), now, now);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#960000008000"});  // bit 7 high
+    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237}) d.on_frame(frame(tpdo1(sw, 150)), now, now);
+    CHECK(d.operational());
+    const auto c = d.counters();
+    CHECK(c.emcy == 1);
+    CHECK(c.faults == 1);
+    CHECK(c.fault_resets == 1);
+    CHECK(d.last_emcy_code() == 0x8611);
+    bool logged = false;
+    for (const auto& e : d.take_events()) logged |= e.text.find("0x8611 (following error)") != std::string::npos;
+    CHECK(logged);
+}
+
+TEST_CASE("Drive: a lost heartbeat fails the session")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    bring_up(d, now, 0);
+    const int64_t last_beat = now - 10'000;
+    d.tick(last_beat + 300'000);
+    CHECK(d.operational());
+    d.tick(last_beat + 300'001);
+    CHECK(d.phase() == Drive::Phase::failed);
+    CHECK(d.counters().heartbeat_losses == 1);
+    CHECK(d.failure().find("heartbeat") != std::string::npos);
+    // A new start recovers.
+    now = last_beat + 400'000;
+    bring_up(d, now, 0);
+    CHECK(d.operational());
+}
+
+TEST_CASE("Drive: an SDO abort during configuration fails with the abort text")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    d.start(now);
+    for (int i = 0; i < 50 && d.phase() == Drive::Phase::configuring; ++i) {
+        d.tick(now);
+        for (const auto& f : d.take_outgoing()) {
+            const auto req = decode_sdo_request(f, 2);
+            if (!req) continue;
+            if (req->at == SdoAddress{0x1A00, 2})
+                d.on_frame(encode_sdo_abort(0x582, req->at, abort_code::not_mappable), now, now);
+            else if (req->kind == SdoRequest::Kind::download)
+                d.on_frame(encode_sdo_download_ack(2, req->at), now, now);
+            else
+                d.on_frame(encode_sdo_upload_reply(2, req->at, 1, 4), now, now);
+        }
+        now += 1000;
+    }
+    CHECK(d.phase() == Drive::Phase::failed);
+    CHECK(d.failure() == "SDO write 0x1A00:02 aborted: 0x06040041 object cannot be mapped to the PDO");
+    CHECK(d.counters().sdo_aborts == 1);
+}
+
+TEST_CASE("Drive: a drive without profile position mode is refused")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    d.start(now);
+    answer_configuration(d, now, 0x4);  // profile velocity only
+    CHECK(d.phase() == Drive::Phase::failed);
+    CHECK(d.failure().find("profile position") != std::string::npos);
+}
+
+TEST_CASE("Drive: a silent node times the SDO out")
+{
+    DriveConfig c = test_config();
+    c.sdo_timeout_us = 50'000;
+    Drive d(c);
+    d.start(0);
+    for (int64_t t = 0; t < 500'000 && d.phase() == Drive::Phase::configuring; t += 10'000) d.tick(t);
+    CHECK(d.phase() == Drive::Phase::failed);
+    CHECK(d.counters().sdo_timeouts == 2);
+    CHECK(d.failure().find("timed out") != std::string::npos);
+}
+
+TEST_CASE("Drive: stop halts, then disables")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    bring_up(d, now, 0);
+    d.stop(now);
+    CHECK(d.phase() == Drive::Phase::halting);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#000000002F01"});  // halt bit 8
+    d.on_frame(frame(tpdo1(0x0637, 0)), now, now);  // target reached
+    CHECK(d.phase() == Drive::Phase::disabling);
+    CHECK(rpdo1s(d.take_outgoing()) == std::vector<std::string>{"202#000000000601"});  // shutdown
+    d.on_frame(frame(tpdo1(0x0231, 0)), now, now);
+    CHECK(d.phase() == Drive::Phase::stopped);
+}
+
+TEST_CASE("Drive: with a SYNC period it produces SYNC and maps the TPDOs to transmission type 1")
+{
+    DriveConfig c = test_config();
+    c.sync_period_us = 10'000;
+    const auto m = Drive::tpdo1(c);
+    CHECK(m.transmission_type == 1);
+    CHECK(m.event_timer_ms == 0);
+    Drive d(c);
+    int64_t now = 0;
+    d.start(now);
+    answer_configuration(d, now);
+    d.tick(now);
+    d.take_outgoing();
+    int syncs = 0;
+    for (int i = 1; i <= 10; ++i) {
+        d.on_frame(frame("702#05"), now + i * 5'000, 0);
+        d.tick(now + i * 5'000);
+        for (const auto& f : d.take_outgoing()) syncs += f.id == 0x080 && f.dlc == 0;
+    }
+    CHECK(syncs == 5);  // 50 ms at 10 ms
+}

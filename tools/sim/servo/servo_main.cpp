@@ -1,0 +1,170 @@
+// ugv-sim servo --pty PATH [--node-id N] ...: the emulated drive and slcan adapter served on
+// a pseudo-terminal. Only the I/O lives here; the logic is DriveEmulator and SlcanAdapter.
+//   SIGUSR1 raises a fault (EMCY 0x8611 following error); SIGUSR2 drops the node off the bus
+//   for --loss-duration seconds (its heartbeat stops); SIGHUP puts the adapter's controller
+//   bus-off (BEL, then silence until the host closes and reopens). --fault-after/--loss-after schedule
+//   the same from the time the drive was first enabled.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "drive_emulator.hpp"
+#include "slcan_adapter.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/io/pty.hpp"
+#include "ugv/sim/command.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_faults{0};
+std::atomic<int> g_losses{0};
+std::atomic<int> g_bus_offs{0};
+
+void on_signal(int sig)
+{
+    if (sig == SIGUSR1) g_faults.fetch_add(1);
+    else if (sig == SIGUSR2) g_losses.fetch_add(1);
+    else if (sig == SIGHUP) g_bus_offs.fetch_add(1);
+    else g_stop.store(true);
+}
+
+void usage(FILE* out)
+{
+    std::fprintf(out,
+                 "usage: ugv-sim servo --pty PATH [--node-id N] [--initial-deg A] [--counts-per-rad C]\n"
+                 "                     [--fault-after S] [--loss-after S] [--loss-duration S]\n"
+                 "  A CiA 402 servo drive behind an slcan adapter on a pseudo-terminal (symlink PATH).\n"
+                 "  SIGUSR1: raise a fault (EMCY 0x8611). SIGUSR2: drop off the bus for --loss-duration s.\n"
+                 "  SIGHUP: the adapter's controller goes bus-off (BEL; silent until closed and reopened).\n");
+}
+
+// Writes what the host will take within ~10 ms; the rest is dropped (returned false), as a
+// USB adapter drops frames when the host stops reading, so the emulator never blocks.
+bool write_some(int fd, const std::string& s)
+{
+    std::size_t off = 0;
+    int waits = 0;
+    while (off < s.size()) {
+        const ssize_t n = ::write(fd, s.data() + off, s.size() - off);
+        if (n >= 0) {
+            off += static_cast<std::size_t>(n);
+            continue;
+        }
+        if (errno == EINTR) continue;
+        if (errno != EAGAIN || ++waits > 10) return false;
+        pollfd p{fd, POLLOUT, 0};
+        ::poll(&p, 1, 1);
+    }
+    return true;
+}
+
+int servo_main(int argc, char** argv)
+{
+    std::string pty_path;
+    int node = 1;
+    double initial_deg = 0.0, counts_per_rad = 4096.0 * 50.0 / (2.0 * M_PI);
+    double fault_after = -1.0, loss_after = -1.0, loss_duration = 1.0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> const char* {
+            if (i + 1 >= argc) {
+                std::fprintf(stderr, "ugv-sim servo: %s needs a value\n", a.c_str());
+                std::exit(2);
+            }
+            return argv[++i];
+        };
+        if (a == "--pty") pty_path = value();
+        else if (a == "--node-id") node = std::atoi(value());
+        else if (a == "--initial-deg") initial_deg = std::atof(value());
+        else if (a == "--counts-per-rad") counts_per_rad = std::atof(value());
+        else if (a == "--fault-after") fault_after = std::atof(value());
+        else if (a == "--loss-after") loss_after = std::atof(value());
+        else if (a == "--loss-duration") loss_duration = std::atof(value());
+        else if (a == "--help" || a == "-h") {
+            usage(stdout);
+            return 0;
+        } else {
+            std::fprintf(stderr, "ugv-sim servo: unknown option %s\n", a.c_str());
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (pty_path.empty() || node < 1 || node > 127) {
+        usage(stderr);
+        return 2;
+    }
+
+    struct sigaction sa{};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (int s : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2, SIGHUP}) sigaction(s, &sa, nullptr);
+
+    ugv::io::Pty pty(pty_path);
+    ::fcntl(pty.master_fd(), F_SETFL, ::fcntl(pty.master_fd(), F_GETFL) | O_NONBLOCK);
+    ugv::sim::servo::DriveModel model;
+    model.node_id = static_cast<uint8_t>(node);
+    model.initial_position_counts = initial_deg * M_PI / 180.0 * counts_per_rad;
+    ugv::sim::servo::DriveEmulator drive(model);
+    ugv::sim::servo::SlcanAdapter adapter;
+    std::fprintf(stderr, "ugv-sim servo: node %d on %s (slave %s)\n", node, pty.path().c_str(), pty.slave_path().c_str());
+
+    const int64_t t0 = ugv::io::monotonic_us();
+    drive.power_on(t0);
+    int64_t enabled_at = -1;
+    bool fault_done = false, loss_done = false;
+    int faults_seen = 0, losses_seen = 0, bus_offs_seen = 0;
+    uint64_t dropped_writes = 0;
+    while (!g_stop.load()) {
+        pollfd p{pty.master_fd(), POLLIN, 0};
+        const int rc = ::poll(&p, 1, 1);
+        const int64_t now = ugv::io::monotonic_us();
+        if (rc > 0 && (p.revents & POLLIN)) {
+            uint8_t buf[1024];
+            const ssize_t n = ::read(pty.master_fd(), buf, sizeof buf);
+            if (n > 0) {
+                for (const auto& f : adapter.feed(buf, static_cast<std::size_t>(n), now)) drive.on_frame(f, now);
+            }
+        }
+        drive.advance(now);
+        if (enabled_at < 0 && drive.state() == ugv::canopen::cia402::State::operation_enabled) enabled_at = now;
+        const double since = enabled_at < 0 ? -1.0 : static_cast<double>(now - enabled_at) * 1e-6;
+        if (g_faults.load() > faults_seen || (!fault_done && fault_after >= 0 && since >= fault_after)) {
+            faults_seen = g_faults.load();
+            fault_done = fault_done || (fault_after >= 0 && since >= fault_after);
+            std::fprintf(stderr, "ugv-sim servo: raising fault 0x8611 (following error)\n");
+            drive.raise_fault(0x8611, now);
+        }
+        if (g_losses.load() > losses_seen || (!loss_done && loss_after >= 0 && since >= loss_after)) {
+            losses_seen = g_losses.load();
+            loss_done = loss_done || (loss_after >= 0 && since >= loss_after);
+            std::fprintf(stderr, "ugv-sim servo: dropping off the bus for %.1f s\n", loss_duration);
+            drive.drop_off_bus(static_cast<int64_t>(loss_duration * 1e6), now);
+        }
+        if (g_bus_offs.load() > bus_offs_seen) {
+            bus_offs_seen = g_bus_offs.load();
+            std::fprintf(stderr, "ugv-sim servo: adapter bus-off\n");
+            adapter.bus_off();
+        }
+        for (const auto& f : drive.take_outgoing()) adapter.on_bus_frame(f, now);
+        const std::string out = adapter.take_output();
+        if (!out.empty() && !write_some(pty.master_fd(), out) && ++dropped_writes % 1000 == 1) {
+            std::fprintf(stderr, "ugv-sim servo: the host is not reading; output dropped (%llu times)\n",
+                         static_cast<unsigned long long>(dropped_writes));
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+UGV_SIM_COMMAND("servo", "CiA 402 servo drive behind an slcan adapter on a pseudo-terminal", servo_main);
