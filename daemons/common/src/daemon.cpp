@@ -227,8 +227,14 @@ void Daemon::publish_status()
 
 void Daemon::on_watchdog()
 {
-    const bool healthy = state_.load() == State::running && io::monotonic_us() - last_alive_us_.load() <= health_timeout_us_;
-    if (healthy) notifier_.watchdog();
+    // Ping while RUNNING with fresh data, and while DEGRADED: then the daemon knows what is
+    // wrong and is recovering (reopening a device with back-off, dead-reckoning through a GPS
+    // outage); a restart would only lose its state and, repeated, trip the start limit. What
+    // the watchdog is for -- a hung main loop, or a session stuck while the state still says
+    // RUNNING -- stops the pings.
+    const State s = state_.load();
+    const bool fresh = io::monotonic_us() - last_alive_us_.load() <= health_timeout_us_;
+    if ((s == State::running && fresh) || s == State::degraded) notifier_.watchdog();
 }
 
 int Daemon::run()

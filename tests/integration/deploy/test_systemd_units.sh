@@ -45,5 +45,16 @@ for u in "${units[@]}"; do
 done
 grep -q -- '--lcm-url=' "$units_dir/ugv-logger.service" && check ok "ugv-logger uses --lcm-url= (not the broken -l)" \
   || check no "ugv-logger must use --lcm-url="
+# Each installed default config is accepted by its daemon, and each unit's --config names one.
+for cfg in "$root"/etc/ugv/*.toml; do
+  name=$(basename "$cfg" .toml); daemon=ugv-${name%%-*}
+  if out=$("$build/bin/$daemon" --config "$cfg" --print-config 2>&1 >/dev/null); then check ok "$daemon accepts /etc/ugv/$(basename "$cfg")"
+  else check no "$daemon refuses /etc/ugv/$(basename "$cfg"): $out"; fi
+done
+for u in "${units[@]}"; do
+  cfg=$(sed -n 's/^ExecStart=.*--config \([^ ]*\).*/\1/p' "$units_dir/$u" | sed 's/%i/front/')
+  [ -z "$cfg" ] && continue
+  [ -f "$root$cfg" ] && check ok "$u: its config $cfg is installed" || check no "$u: $cfg is not installed"
+done
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -5,7 +5,8 @@
 //   - the TOML config (ugv::runtime::Config) with keys common to all daemons
 //     (status_channel, [realtime]) and exit status 2 with `FILE: KEY: why` on any error;
 //   - spdlog to stderr; SIGINT/SIGTERM -> STOPPING=1 and a clean return from run();
-//   - sd_notify READY=1, STATUS=, WATCHDOG=1 only while healthy (data within the timeout);
+//   - sd_notify READY=1, STATUS=, WATCHDOG=1 while RUNNING with data within the timeout, or
+//     while DEGRADED (recovering); a hung loop or a silent stall stops the pings;
 //   - the 1 Hz daemon_status_t on STATUS_<NAME> with the named counters.
 //
 // Threads: run() is the main thread: it polls the bus fd, the fds added with add_fd(), the

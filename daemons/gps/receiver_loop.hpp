@@ -1,0 +1,43 @@
+// The device thread of ugv-gps: open the port, start the session (configure or passive),
+// decode, interpret and publish; on silence, hang-up or a failed configuration report
+// DEGRADED, close, wait (exponential back-off) and start again. Never exits on a device
+// problem; returns when the daemon is asked to stop.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "gps_config.hpp"
+#include "ugv/daemon/daemon.hpp"
+#include "ugv/novatel/decoder.hpp"
+#include "ugv/novatel/interpreter.hpp"
+
+namespace ugv::gps {
+
+class ReceiverLoop
+{
+public:
+    ReceiverLoop(daemon::Daemon& daemon, GpsConfig config);
+    void run();  // on the device thread
+    // True once a session started and a fix was published (the main thread sends READY=1).
+    bool data_flowing() const { return data_flowing_.load(); }
+
+private:
+    void on_message(const novatel::Decoded& message);
+    bool wanted(novatel::FrameKind kind) const;
+    void update_counters();
+    void publish_raw(const uint8_t* data, std::size_t n, int64_t utime);
+
+    daemon::Daemon& daemon_;
+    GpsConfig config_;
+    novatel::Decoder decoder_;
+    novatel::Interpreter interpreter_;
+    int64_t fix_seq_ = 0;
+    int64_t vel_seq_ = 0;
+    int64_t raw_seq_ = 0;
+    uint64_t ignored_ = 0;
+    uint64_t fixes_ = 0;
+    std::atomic<bool> data_flowing_{false};
+};
+
+}  // namespace ugv::gps

@@ -1,0 +1,130 @@
+#include "device_loop.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include <ugv/raw_bytes_t.hpp>
+
+#include "imu_message.hpp"
+#include "tap_stream.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/io/serial_port.hpp"
+#include "ugv/runtime/backoff.hpp"
+#include "ugv/runtime/rate_limited_log.hpp"
+
+namespace ugv::imu_daemon {
+
+namespace gx1 = ugv::microstrain_gx1;
+
+DeviceLoop::DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config, Outbox& outbox)
+    : d_(daemon), config_(config), outbox_(outbox)
+{
+    // Every counter exists from the start, so the status lists them all at zero.
+    for (const char* name : {"frames", "checksum_errors", "resyncs", "bytes_skipped", "reconnects", "silences",
+                             "handshake_failures", "clock_restarts", "published", "publish_failures"})
+        d_.counters()[name];
+    d_.set_health_timeout_us(int64_t{config_.session.silence_timeout_ms} * 1000);
+}
+
+void DeviceLoop::sleep_us(int64_t us) const
+{
+    const int64_t end = io::monotonic_us() + us;
+    while (!d_.stop_requested() && io::monotonic_us() < end)
+        std::this_thread::sleep_for(std::chrono::microseconds(std::min<int64_t>(50'000, end - io::monotonic_us())));
+}
+
+void DeviceLoop::sync_counters(const gx1::Session& session)
+{
+    // The parser's counters are cumulative over the session's life: mirror them.
+    const auto& p = session.parser_counters();
+    const auto& s = session.counters();
+    auto& c = d_.counters();
+    c["frames"].store(static_cast<int64_t>(p.frames));
+    c["checksum_errors"].store(static_cast<int64_t>(p.checksum_errors));
+    c["resyncs"].store(static_cast<int64_t>(p.resyncs));
+    c["bytes_skipped"].store(static_cast<int64_t>(p.bytes_skipped));
+    c["silences"].store(static_cast<int64_t>(s.silences));
+    c["handshake_failures"].store(static_cast<int64_t>(s.handshake_failures));
+    c["clock_restarts"].store(static_cast<int64_t>(s.clock_restarts));
+}
+
+void DeviceLoop::run()
+{
+    io::SerialPort port;
+    TapStream::Tap tap;
+    if (config_.publish_raw) {
+        tap = [this](bool to_device, const uint8_t* data, std::size_t n, int64_t utime) {
+            ugv::raw_bytes_t raw{};
+            raw.utime = utime != 0 ? utime : io::now_utime();
+            raw.seq = raw_seq_++;
+            raw.device = "imu";
+            raw.direction = to_device ? ugv::raw_bytes_t::DIRECTION_TO_DEVICE : ugv::raw_bytes_t::DIRECTION_FROM_DEVICE;
+            raw.nbytes = static_cast<int32_t>(n);
+            raw.data.assign(data, data + n);
+            outbox_.push(std::move(raw));
+        };
+    }
+    TapStream stream(port, tap);
+    gx1::Session session(stream, config_.session, gx1::FrameConverter(config_.r_body_sensor, config_.declination_rad));
+    session.set_abort([this] { return d_.stop_requested(); });
+    runtime::Backoff backoff(100'000, 2'000'000);
+    runtime::RateLimitedLog rlog;
+    bool ever_opened = false;    // a reopen after this counts as a reconnect
+    bool ever_streamed = false;  // before the first good handshake the daemon is STARTING
+    const auto sigma = static_cast<float>(config_.orientation_sigma_rad);
+
+    auto degrade = [&](const std::string& why) {
+        d_.set_state(ever_streamed ? daemon::State::degraded : daemon::State::starting, why);
+        rlog.log(spdlog::level::warn, why, why, io::monotonic_us());
+    };
+    auto on_sample = [&](const gx1::Sample& s) {
+        outbox_.push(to_message(s, seq_++, sigma));
+        d_.mark_alive();
+    };
+
+    while (!d_.stop_requested()) {
+        if (!port.is_open()) {
+            if (!port.open(config_.device, config_.baud)) {
+                degrade(port.last_error());
+                sleep_us(backoff.next());
+                continue;
+            }
+            if (ever_opened) ++d_.counters()["reconnects"];
+            ever_opened = true;
+            spdlog::info("{} open at {} baud", config_.device, config_.baud);
+        }
+        if (!session.streaming()) {
+            const auto st = session.initialise();
+            sync_counters(session);
+            if (d_.stop_requested()) break;
+            if (st != gx1::Session::Status::ok) {
+                degrade(session.error());
+                if (st == gx1::Session::Status::closed) port.close();
+                sleep_us(backoff.next());
+                continue;
+            }
+            backoff.reset();
+            ever_streamed = true;
+            const auto& info = session.info();
+            spdlog::info("3DM-GX1 serial {} firmware {}: gains gyro {} accel {} mag {}, tick {:.4f} ms, {} 0x{:02X}",
+                         info.serial_number, info.firmware_version, info.gains.gyro, info.gains.accel, info.gains.mag,
+                         info.tick_period_s * 1e3, config_.session.continuous ? "streaming" : "polling",
+                         config_.session.command);
+            d_.ready();
+            d_.notify_status("streaming from " + config_.device);
+        }
+        const auto st = session.step(100, on_sample);
+        sync_counters(session);
+        if (st == gx1::Session::Status::closed) {
+            port.close();
+            degrade(session.error());
+        } else if (st == gx1::Session::Status::silence) {
+            degrade(session.error());
+        }
+    }
+    port.close();
+}
+
+}  // namespace ugv::imu_daemon

@@ -1,0 +1,23 @@
+// ugv-pose's configuration keys (docs/pose.md lists each with its default and range).
+#pragma once
+
+#include <string>
+
+#include "ugv/estimation/pose_estimator.hpp"
+#include "ugv/runtime/config.hpp"
+
+namespace ugv::pose_daemon {
+
+struct PoseConfig
+{
+    estimation::EstimatorConfig estimator;
+    std::string gps_fix_channel = "GPS_FIX";
+    std::string gps_velocity_channel = "GPS_VEL";
+    std::string imu_channel = "IMU";
+    std::string channel = "POSE";
+};
+
+// Reads every key (ConfigError on a bad one: the daemon exits 2 with `FILE: KEY: why`).
+PoseConfig read_config(runtime::Config& cfg);
+
+}  // namespace ugv::pose_daemon

@@ -1,0 +1,58 @@
+#include "terrain_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ugv::terrain_daemon {
+
+TerrainDaemonConfig read_config(runtime::Config& cfg)
+{
+    TerrainDaemonConfig c;
+    c.points_channel = cfg.get_string("points_channel", c.points_channel);
+    c.pose_channel = cfg.get_string("pose_channel", c.pose_channel);
+    c.map_channel = cfg.get_string("map_channel", c.map_channel);
+    c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
+    c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 0.5, 0.0, 5.0) * 1e6));
+    c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));
+
+    terrain::MapConfig& m = c.map;
+    m.grid_size_m = cfg.get_double("grid_size_m", 0.2, 0.05, 2.0);
+    m.extent_x_m = cfg.get_double("extent_x_m", 30.0, 1.0, 200.0);
+    m.extent_y_m = cfg.get_double("extent_y_m", 30.0, 1.0, 200.0);
+    m.theta_d_rad = cfg.get_double("theta_d_deg", 5.0, 0.5, 45.0) * M_PI / 180.0;
+    m.statistics = cfg.get_enum("statistics", "variance_weighted", {"variance_weighted", "classical"}) == "classical"
+                       ? terrain::StatisticsKind::classical
+                       : terrain::StatisticsKind::variance_weighted;
+    m.mode = cfg.get_enum("mode", "egocentric", {"egocentric", "world_aligned"}) == "world_aligned"
+                 ? terrain::MapMode::world_aligned
+                 : terrain::MapMode::egocentric;
+    const std::string reference =
+        cfg.get_enum("reference_point", "rear_bumper", {"rear_bumper", "rear_axle", "front_bumper", "custom"});
+    const double rear_bumper_x = cfg.get_double("rear_bumper_x_m", -0.5, -10.0, 0.0);
+    const double front_bumper_x = cfg.get_double("front_bumper_x_m", 2.0, 0.0, 10.0);
+    const double custom_x = cfg.get_double("reference_x_m", 0.0, -10.0, 10.0);
+    const double custom_y = cfg.get_double("reference_y_m", 0.0, -10.0, 10.0);
+    if (reference == "rear_bumper") m.reference_x_m = rear_bumper_x;
+    if (reference == "rear_axle") m.reference_x_m = 0.0;
+    if (reference == "front_bumper") m.reference_x_m = front_bumper_x;
+    if (reference == "custom") {
+        m.reference_x_m = custom_x;
+        m.reference_y_m = custom_y;
+    } else if (cfg.has("reference_x_m") || cfg.has("reference_y_m")) {
+        cfg.fail("reference_x_m", "only used with reference_point = \"custom\"");
+    }
+    m.spread = cfg.get_bool("spread", true);
+    m.spread_max_cells = static_cast<int>(cfg.get_int("spread_max_cells", 2, 1, terrain::kMaxSpreadCells));
+    m.min_variance_m2 = cfg.get_double("min_variance_m2", 1e-6, 1e-12, 1.0);
+    m.pose_history_us = static_cast<int64_t>(std::llround(cfg.get_double("pose_history_s", 2.0, 0.1, 60.0) * 1e6));
+    m.max_interpolation_span_s = cfg.get_double("max_interpolation_span_s", 0.1, 0.001, 1.0);
+    if (static_cast<double>(m.nx()) * m.ny() > 1.0e6) cfg.fail("extent_x_m", "more than 1 million cells");
+    try {
+        m.validate();
+    } catch (const std::invalid_argument& e) {
+        cfg.fail("-", e.what());
+    }
+    return c;
+}
+
+}  // namespace ugv::terrain_daemon

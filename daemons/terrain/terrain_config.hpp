@@ -1,0 +1,26 @@
+// ugv-terrain's configuration keys (docs/terrain.md lists each with its range).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "ugv/runtime/config.hpp"
+#include "ugv/terrain/map_config.hpp"
+
+namespace ugv::terrain_daemon {
+
+struct TerrainDaemonConfig
+{
+    std::string points_channel = "POINTS.*";  // regex: every nodscan instance
+    std::string pose_channel = "POSE";
+    std::string map_channel = "TERRAIN_MAP";
+    double publish_hz = 2.0;                   // on message time
+    int64_t max_point_wait_us = 500'000;       // how long a cloud waits for a pose after it
+    int64_t health_timeout_us = 2'000'000;
+    terrain::MapConfig map;
+};
+
+// Reads every key (throws runtime::ConfigError, naming the key, for a bad value).
+TerrainDaemonConfig read_config(runtime::Config& cfg);
+
+}  // namespace ugv::terrain_daemon

@@ -1,0 +1,65 @@
+// The mapper driven by messages: poses move the map, point clouds wait (up to
+// max_point_wait) for a pose at or after their last point and are then fused, and the map
+// is published every 1/publish_hz of message time (never the wall clock), so a replay
+// gives the same maps as the live run, at any speed.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+
+#include <ugv/point_cloud_t.hpp>
+#include <ugv/pose_t.hpp>
+#include <ugv/terrain_map_t.hpp>
+
+#include "terrain_config.hpp"
+#include "ugv/terrain/terrain_mapper.hpp"
+
+namespace ugv::terrain_daemon {
+
+struct NodeCounters
+{
+    uint64_t poses_in = 0;
+    uint64_t poses_rejected_status = 0;  // INITIALIZING or FAULT
+    uint64_t clouds_in = 0;
+    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints
+    uint64_t maps_published = 0;
+    int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
+};
+
+class TerrainNode
+{
+public:
+    using Publish = std::function<void(const terrain_map_t&)>;
+    // now_us: a clock for the publish-time counter only (never used for the output).
+    TerrainNode(const TerrainDaemonConfig& config, Publish publish, std::function<int64_t()> now_us);
+
+    void on_pose(const pose_t& msg);
+    void on_points(const point_cloud_t& msg);
+    // Fuses every waiting cloud (end of a replay).
+    void flush();
+
+    const terrain::TerrainMapper& mapper() const { return mapper_; }
+    const NodeCounters& counters() const { return counters_; }
+
+private:
+    void fuse(const point_cloud_t& msg);
+    void fuse_ready(bool all);
+    void maybe_publish(int64_t message_time_us);
+
+    TerrainDaemonConfig config_;
+    terrain::TerrainMapper mapper_;
+    Publish publish_;
+    std::function<int64_t()> now_us_;
+    NodeCounters counters_;
+    std::deque<point_cloud_t> waiting_;
+    pose_t last_pose_{};
+    bool have_pose_ = false;
+    int64_t period_us_;
+    int64_t next_publish_us_ = 0;
+    int64_t seq_ = 0;
+    terrain::MapSnapshot snapshot_;
+    terrain_map_t message_;
+};
+
+}  // namespace ugv::terrain_daemon

@@ -1,0 +1,63 @@
+// Host time stamps from the device timer: a filtered offset-and-drift model, so that the
+// jitter of serial arrival (scheduling, USB latency, chunking) does not reach utime.
+//
+// The device samples on its own clock; the host sees each frame's first byte some time
+// later: arrival = truth + delay, with delay >= 0 and often large. The model
+//   host_time = host0 + device_elapsed + offset + drift * device_elapsed
+// is fitted to the LOWER envelope of the arrivals: per block of device time the sample with
+// the smallest (arrival - device_elapsed) is kept (the least delayed one), and a straight
+// line is fitted by least squares to the last window of block minima. The stamp is the
+// line's value, never later than the arrival itself (the truth cannot be later).
+//
+// An arrival well before the line (the device restarted its timer, or the host clock was
+// stepped) or a device time that runs backwards restarts the model.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+
+namespace ugv::microstrain_gx1 {
+
+class DeviceClockFilter
+{
+public:
+    struct Params
+    {
+        double block_s = 1.0;             // device time per lower-envelope block
+        std::size_t window_blocks = 60;   // blocks in the line fit (a minute)
+        double restart_threshold_s = 0.05;// arrival this far before the line: restart
+    };
+
+    DeviceClockFilter() : DeviceClockFilter(Params{}) {}
+    explicit DeviceClockFilter(Params p) : p_(p) {}
+
+    // device_s: unwrapped device time (ticks * tick period); arrival_utime: host time of the
+    // frame's first byte (us since the epoch). Returns the filtered host time of the sample.
+    int64_t update(double device_s, int64_t arrival_utime);
+    void reset();
+
+    double drift() const { return drift_; }         // host seconds per device second - 1
+    std::size_t restarts() const { return restarts_; }
+
+private:
+    struct Point
+    {
+        double x, y;  // device elapsed (s), arrival minus device elapsed (s)
+    };
+    void refit();
+    void start(double device_s, int64_t arrival_utime);
+
+    Params p_;
+    bool started_ = false;
+    int64_t host0_us_ = 0;
+    double device0_s_ = 0;
+    double last_x_ = 0;
+    double block_start_x_ = 0;
+    Point block_min_{0, 0};
+    std::deque<Point> window_;
+    double offset_ = 0, drift_ = 0;  // the fitted line y = offset_ + drift_ * x
+    std::size_t restarts_ = 0;
+};
+
+}  // namespace ugv::microstrain_gx1

@@ -1,0 +1,170 @@
+// The pose estimator: GPS fixes, GPS velocities and IMU samples in (any order, within a short
+// buffer), poses with covariance out at a fixed rate on data time.
+//
+// Time: everything is driven by the inputs' utime, never by a clock, so the same inputs in the
+// same order give bit-identical poses. Inputs wait in a buffer ordered by utime until the
+// newest input seen is buffer_us newer than them; then they are applied in time order. An
+// input older than the last one applied is too late: refused and counted.
+//
+// Poses are produced at every multiple of the output period (utime % period == 0) that the
+// filter passes, by predicting to exactly that time.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ugv/estimation/error_state_filter.hpp"
+#include "ugv/estimation/inputs.hpp"
+#include "ugv/estimation/local_frame.hpp"
+
+namespace ugv::estimation {
+
+struct EstimatorConfig
+{
+    // Datum of the local ENU frame; std::nullopt = the first fix of datum_min_quality.
+    std::optional<Datum> datum;
+    FixQuality datum_min_quality = FixQuality::single;
+    FixQuality min_fix_quality = FixQuality::single;  // fixes below this are not used
+
+    int64_t output_period_us = 100'000;  // 10 Hz
+    int64_t buffer_us = 150'000;         // reorder window
+
+    ProcessNoise process;
+    double imu_orientation_sigma_rad = 0.035;   // when the sample does not carry one
+    double gps_default_sigma_m = 5.0;           // when the fix does not carry sigmas
+    double gps_min_sigma_m = 0.01;              // floor on reported sigmas
+    double gps_velocity_sigma_mps = 0.1;        // 1-sigma per ENU axis
+    double course_min_speed_mps = 1.0;          // course over ground used above this speed
+    double course_sigma_rad = 0.05;             // sideslip and antenna misalignment
+    Eigen::Vector3d gps_antenna_body_m = Eigen::Vector3d::Zero();  // lever arm of the antenna
+
+    double gate_position_chi2 = 16.27;     // 3 dof, p = 0.999
+    double gate_velocity_chi2 = 16.27;
+    double gate_orientation_chi2 = 16.27;
+    double gate_course_chi2 = 10.83;       // 1 dof, p = 0.999
+
+    int64_t gps_timeout_us = 1'000'000;     // no fix used for this long: outage, DEGRADED
+    int64_t imu_timeout_us = 500'000;       // no IMU for this long: constant-velocity prediction
+    int64_t gps_reset_after_us = 10'000'000;  // fixes rejected this long: re-anchor on the fix
+
+    double initial_velocity_sigma_mps = 1.0;
+    double initial_heading_sigma_rad = 0.5;  // true yaw before the course has been seen
+
+    // Throws std::invalid_argument naming the first bad field.
+    void validate() const;
+};
+
+enum class PoseStatus : int8_t { initializing = 0, ok = 1, degraded = 2, fault = 3 };
+
+struct PoseEstimate
+{
+    int64_t utime = 0;
+    PoseStatus status = PoseStatus::initializing;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();  // m, ENU of the datum
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, ENU
+    Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body -> ENU
+    double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad (Z-Y-X); yaw 0 = east, CCW
+    Eigen::Vector3d rotation_rate = Eigen::Vector3d::Zero();  // rad/s body, last IMU sample
+    Eigen::Matrix3d position_covariance = Eigen::Matrix3d::Zero();     // m^2 (E, N, U)
+    Eigen::Matrix3d velocity_covariance = Eigen::Matrix3d::Zero();     // (m/s)^2
+    Eigen::Matrix3d orientation_covariance = Eigen::Matrix3d::Zero();  // rad^2 (roll, pitch, yaw)
+    Eigen::Matrix3d attitude_error_covariance = Eigen::Matrix3d::Zero();  // rad^2, world rotation vector
+    // The filter's whole error-state covariance (dp, dv, dtheta, d offset; see
+    // ErrorStateFilter), for consumers that need the cross terms.
+    ErrorStateFilter::Covariance error_covariance = ErrorStateFilter::Covariance::Zero();
+    double heading_offset = 0.0;        // rad, IMU yaw minus true yaw
+    double heading_offset_sigma = 0.0;  // rad
+    bool heading_observed = false;      // GPS course has aligned the heading
+    bool gps_outage = false;
+    Datum datum;
+};
+
+struct EstimatorCounters
+{
+    int64_t gps_used = 0;
+    int64_t gps_rejected = 0;       // failed the Mahalanobis gate
+    int64_t gps_low_quality = 0;    // below min_fix_quality
+    int64_t gps_resets = 0;         // re-anchored after gps_reset_after_us of rejections
+    int64_t velocity_used = 0;
+    int64_t velocity_rejected = 0;
+    int64_t course_used = 0;
+    int64_t course_rejected = 0;
+    int64_t imu_used = 0;
+    int64_t imu_rejected = 0;       // orientation failed the gate
+    int64_t late = 0;               // older than what was already applied
+    int64_t reordered = 0;          // arrived out of order but within the buffer
+    int64_t outages = 0;            // GPS outages started
+    int64_t non_finite = 0;         // refused by input_checks
+    int64_t filter_resets = 0;      // the filter went non-finite and restarted
+    int64_t poses = 0;
+};
+
+class PoseEstimator
+{
+public:
+    // Throws std::invalid_argument for an invalid config.
+    explicit PoseEstimator(EstimatorConfig config);
+
+    void add(const GpsFix& fix);
+    void add(const GpsVelocity& velocity);
+    void add(const ImuSample& sample);
+    // Applies everything still buffered (end of a log).
+    void flush();
+
+    // The poses produced since the last call, oldest first.
+    std::vector<PoseEstimate> take_poses();
+
+    const EstimatorCounters& counters() const { return counters_; }
+    bool initialized() const { return initialized_; }
+    const std::optional<LocalFrame>& frame() const { return frame_; }
+    const ErrorStateFilter& filter() const { return filter_; }
+    const EstimatorConfig& config() const { return config_; }
+
+private:
+    struct Event
+    {
+        int64_t utime;
+        uint64_t arrival;
+        std::variant<ImuSample, GpsFix, GpsVelocity> data;
+    };
+
+    void enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVelocity> data);
+    void release(int64_t up_to_utime);
+    void apply(const Event& e);
+    void advance_to(int64_t utime);
+    void predict_to(int64_t utime);
+    void emit(int64_t utime);
+    void apply_imu(const ImuSample& s);
+    void apply_fix(const GpsFix& f);
+    void apply_velocity(const GpsVelocity& v);
+    void initialize(const GpsFix& f, const Eigen::Vector3d& antenna_enu, const Eigen::Matrix3d& cov);
+    Eigen::Matrix3d fix_covariance(const GpsFix& f) const;
+    double imu_sigma(const ImuSample& s) const;
+
+    EstimatorConfig config_;
+    ErrorStateFilter filter_;
+    std::optional<LocalFrame> frame_;
+    EstimatorCounters counters_;
+    std::deque<Event> buffer_;
+    uint64_t arrivals_ = 0;
+    int64_t newest_utime_ = 0;
+    int64_t applied_utime_ = 0;  // utime of the last applied event
+    int64_t filter_utime_ = 0;   // time the filter state is valid at
+    int64_t next_output_utime_ = 0;
+    bool initialized_ = false;
+    bool heading_observed_ = false;
+    bool in_outage_ = false;
+    std::optional<ImuSample> last_imu_;
+    std::optional<ImuSample> last_orientation_;
+    int64_t last_fix_used_utime_ = 0;
+    std::vector<PoseEstimate> poses_;
+};
+
+}  // namespace ugv::estimation

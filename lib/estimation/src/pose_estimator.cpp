@@ -1,0 +1,375 @@
+#include "ugv/estimation/pose_estimator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "ugv/estimation/input_checks.hpp"
+#include "ugv/geometry/rotation.hpp"
+
+namespace ugv::estimation {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+
+// Longest single prediction step (s): keeps the linearised covariance step accurate when
+// inputs are sparse (an IMU outage, a slow log).
+constexpr double kMaxStepS = 0.05;
+
+void require(bool ok, const char* field)
+{
+    if (!ok) {
+        throw std::invalid_argument(std::string("estimator config: ") + field);
+    }
+}
+
+bool positive(double x)
+{
+    return std::isfinite(x) && x > 0.0;
+}
+
+}  // namespace
+
+void EstimatorConfig::validate() const
+{
+    require(output_period_us > 0, "output_period_us must be > 0");
+    require(buffer_us >= 0, "buffer_us must be >= 0");
+    require(positive(process.accel) && positive(process.gyro) && positive(process.heading_offset),
+            "process noise densities must be > 0");
+    require(positive(imu_orientation_sigma_rad), "imu_orientation_sigma_rad must be > 0");
+    require(positive(gps_default_sigma_m) && positive(gps_min_sigma_m), "GPS sigmas must be > 0");
+    require(positive(gps_velocity_sigma_mps), "gps_velocity_sigma_mps must be > 0");
+    require(std::isfinite(course_min_speed_mps) && course_min_speed_mps > 0.0, "course_min_speed_mps must be > 0");
+    require(positive(course_sigma_rad), "course_sigma_rad must be > 0");
+    require(gps_antenna_body_m.allFinite(), "gps_antenna_body_m must be finite");
+    require(positive(gate_position_chi2) && positive(gate_velocity_chi2) && positive(gate_orientation_chi2) &&
+                positive(gate_course_chi2),
+            "gates must be > 0");
+    require(gps_timeout_us > 0 && imu_timeout_us > 0 && gps_reset_after_us > 0, "timeouts must be > 0");
+    require(positive(initial_velocity_sigma_mps) && positive(initial_heading_sigma_rad),
+            "initial sigmas must be > 0");
+    require(quality_rank(min_fix_quality) > 0 && quality_rank(datum_min_quality) > 0,
+            "minimum fix qualities must be usable (single or better)");
+}
+
+PoseEstimator::PoseEstimator(EstimatorConfig config) : config_(std::move(config))
+{
+    config_.validate();
+    if (config_.datum) {
+        frame_.emplace(*config_.datum);
+    }
+}
+
+void PoseEstimator::add(const GpsFix& fix)
+{
+    if (!is_valid(fix)) {
+        ++counters_.non_finite;
+        return;
+    }
+    enqueue(fix.utime, fix);
+}
+
+void PoseEstimator::add(const GpsVelocity& velocity)
+{
+    if (!is_valid(velocity)) {
+        ++counters_.non_finite;
+        return;
+    }
+    enqueue(velocity.utime, velocity);
+}
+
+void PoseEstimator::add(const ImuSample& sample)
+{
+    if (!is_valid(sample)) {
+        ++counters_.non_finite;
+        return;
+    }
+    enqueue(sample.utime, sample);
+}
+
+void PoseEstimator::flush()
+{
+    release(std::numeric_limits<int64_t>::max());
+}
+
+std::vector<PoseEstimate> PoseEstimator::take_poses()
+{
+    std::vector<PoseEstimate> out;
+    out.swap(poses_);
+    return out;
+}
+
+void PoseEstimator::enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVelocity> data)
+{
+    if (utime < applied_utime_) {
+        ++counters_.late;
+        return;
+    }
+    Event e{utime, arrivals_++, std::move(data)};
+    // Ordered by (utime, kind, arrival): equal stamps apply IMU first, then fix, then
+    // velocity, whatever order they arrived in, so the result does not depend on transport.
+    const auto before = [](const Event& a, const Event& b) {
+        if (a.utime != b.utime) {
+            return a.utime < b.utime;
+        }
+        if (a.data.index() != b.data.index()) {
+            return a.data.index() < b.data.index();
+        }
+        return a.arrival < b.arrival;
+    };
+    const auto pos = std::upper_bound(buffer_.begin(), buffer_.end(), e, before);
+    if (pos != buffer_.end()) {
+        ++counters_.reordered;
+    }
+    buffer_.insert(pos, std::move(e));
+    newest_utime_ = std::max(newest_utime_, utime);
+    release(newest_utime_ - config_.buffer_us);
+}
+
+void PoseEstimator::release(int64_t up_to_utime)
+{
+    while (!buffer_.empty() && buffer_.front().utime <= up_to_utime) {
+        const Event e = std::move(buffer_.front());
+        buffer_.pop_front();
+        apply(e);
+    }
+}
+
+void PoseEstimator::apply(const Event& e)
+{
+    applied_utime_ = e.utime;
+    if (initialized_) {
+        advance_to(e.utime);
+    }
+    if (const auto* imu = std::get_if<ImuSample>(&e.data)) {
+        apply_imu(*imu);
+    } else if (const auto* fix = std::get_if<GpsFix>(&e.data)) {
+        apply_fix(*fix);
+    } else if (const auto* vel = std::get_if<GpsVelocity>(&e.data)) {
+        apply_velocity(*vel);
+    }
+    if (initialized_ && !filter_.healthy()) {
+        // A non-finite state cannot recover by itself: start again from the next fix.
+        initialized_ = false;
+        heading_observed_ = false;
+        ++counters_.filter_resets;
+    }
+}
+
+void PoseEstimator::advance_to(int64_t utime)
+{
+    while (next_output_utime_ <= utime) {
+        predict_to(next_output_utime_);
+        emit(next_output_utime_);
+        next_output_utime_ += config_.output_period_us;
+    }
+    predict_to(utime);
+}
+
+void PoseEstimator::predict_to(int64_t utime)
+{
+    if (utime <= filter_utime_) {
+        return;
+    }
+    // The IMU sample last applied is held over the interval (zero-order hold). Without a
+    // recent one the vehicle keeps its velocity and attitude.
+    const Matrix3d r = filter_.state().attitude.toRotationMatrix();
+    Vector3d rate = Vector3d::Zero();
+    Vector3d force = r.transpose() * Vector3d(0.0, 0.0, ErrorStateFilter::kGravity);
+    if (last_imu_ && filter_utime_ - last_imu_->utime <= config_.imu_timeout_us) {
+        if (last_imu_->has_rate) {
+            rate = last_imu_->rate_rps;
+        }
+        if (last_imu_->has_accel) {
+            force = last_imu_->accel_mps2;
+        }
+    }
+    double remaining = static_cast<double>(utime - filter_utime_) * 1e-6;
+    while (remaining > 0.0) {
+        const double dt = std::min(remaining, kMaxStepS);
+        filter_.predict(dt, rate, force, config_.process);
+        remaining -= dt;
+    }
+    filter_utime_ = utime;
+}
+
+void PoseEstimator::emit(int64_t utime)
+{
+    if (!filter_.healthy()) {
+        return;
+    }
+    const bool outage = utime - last_fix_used_utime_ > config_.gps_timeout_us;
+    if (outage && !in_outage_) {
+        ++counters_.outages;
+    }
+    in_outage_ = outage;
+    const bool imu_stale = !last_imu_ || utime - last_imu_->utime > config_.imu_timeout_us;
+
+    const NominalState& s = filter_.state();
+    const ErrorStateFilter::Covariance& P = filter_.covariance();
+    PoseEstimate out;
+    out.utime = utime;
+    out.status = (outage || imu_stale || !heading_observed_) ? PoseStatus::degraded : PoseStatus::ok;
+    out.position = s.position;
+    out.velocity = s.velocity;
+    out.orientation = s.attitude;
+    const geometry::Euler e = geometry::euler_from_quaternion(s.attitude);
+    out.roll = e.roll;
+    out.pitch = e.pitch;
+    out.yaw = e.yaw;
+    if (last_imu_ && last_imu_->has_rate && !imu_stale) {
+        out.rotation_rate = last_imu_->rate_rps;
+    }
+    out.position_covariance = P.block<3, 3>(ErrorStateFilter::kP, ErrorStateFilter::kP);
+    out.velocity_covariance = P.block<3, 3>(ErrorStateFilter::kV, ErrorStateFilter::kV);
+    out.attitude_error_covariance = P.block<3, 3>(ErrorStateFilter::kTheta, ErrorStateFilter::kTheta);
+    const Matrix3d j = geometry::euler_jacobian_world(e);
+    out.orientation_covariance = j * out.attitude_error_covariance * j.transpose();
+    out.error_covariance = P;
+    out.heading_offset = s.heading_offset;
+    out.heading_offset_sigma = std::sqrt(P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset));
+    out.heading_observed = heading_observed_;
+    out.gps_outage = outage;
+    out.datum = frame_->datum();
+    poses_.push_back(out);
+    ++counters_.poses;
+}
+
+double PoseEstimator::imu_sigma(const ImuSample& s) const
+{
+    return std::isnan(s.orientation_sigma_rad) ? config_.imu_orientation_sigma_rad : s.orientation_sigma_rad;
+}
+
+Matrix3d PoseEstimator::fix_covariance(const GpsFix& f) const
+{
+    const auto sigma = [this](double reported) {
+        return std::isnan(reported) ? config_.gps_default_sigma_m : std::max(reported, config_.gps_min_sigma_m);
+    };
+    const Vector3d s(sigma(f.sigma_east_m), sigma(f.sigma_north_m), sigma(f.sigma_up_m));
+    return s.cwiseProduct(s).asDiagonal();
+}
+
+void PoseEstimator::apply_imu(const ImuSample& s)
+{
+    if (s.has_orientation) {
+        last_orientation_ = s;
+        if (initialized_) {
+            const double sigma = imu_sigma(s);
+            const UpdateResult r = filter_.update_imu_orientation(
+                s.orientation.normalized(), Matrix3d::Identity() * sigma * sigma, config_.gate_orientation_chi2);
+            ++(r.applied ? counters_.imu_used : counters_.imu_rejected);
+        }
+    }
+    last_imu_ = s;
+}
+
+void PoseEstimator::apply_fix(const GpsFix& f)
+{
+    if (quality_rank(f.quality) < quality_rank(config_.min_fix_quality)) {
+        ++counters_.gps_low_quality;
+        return;
+    }
+    if (!frame_) {
+        if (quality_rank(f.quality) < quality_rank(config_.datum_min_quality)) {
+            ++counters_.gps_low_quality;
+            return;
+        }
+        frame_.emplace(Datum{f.latitude_deg, f.longitude_deg, f.height_m});
+    }
+    const Vector3d antenna = frame_->to_enu(f.latitude_deg, f.longitude_deg, f.height_m);
+    const Matrix3d cov = fix_covariance(f);
+    if (!initialized_) {
+        if (last_orientation_) {
+            initialize(f, antenna, cov);
+        }
+        return;
+    }
+    const UpdateResult r =
+        filter_.update_position(antenna, cov, config_.gps_antenna_body_m, config_.gate_position_chi2);
+    if (r.applied) {
+        ++counters_.gps_used;
+        last_fix_used_utime_ = f.utime;
+        return;
+    }
+    ++counters_.gps_rejected;
+    if (f.utime - last_fix_used_utime_ > config_.gps_reset_after_us) {
+        // Every fix for this long disagreed with the filter: the filter, not the receiver,
+        // is the one that is wrong (e.g. after a long outage with a drifting prediction).
+        filter_.reset_position(antenna - filter_.state().attitude * config_.gps_antenna_body_m, cov);
+        ++counters_.gps_resets;
+        last_fix_used_utime_ = f.utime;
+    }
+}
+
+void PoseEstimator::initialize(const GpsFix& f, const Vector3d& antenna, const Matrix3d& cov)
+{
+    NominalState s;
+    s.attitude = last_orientation_->orientation.normalized();
+    s.position = antenna - s.attitude * config_.gps_antenna_body_m;
+    s.velocity = Vector3d::Zero();
+    s.heading_offset = 0.0;  // the IMU's yaw is taken as true until the course is seen
+    const double imu_var = std::pow(imu_sigma(*last_orientation_), 2);
+    const double yaw_var = std::pow(config_.initial_heading_sigma_rad, 2);
+    const double vel_var = std::pow(config_.initial_velocity_sigma_mps, 2);
+    ErrorStateFilter::Covariance P = ErrorStateFilter::Covariance::Zero();
+    P.block<3, 3>(ErrorStateFilter::kP, ErrorStateFilter::kP) = cov;
+    P.block<3, 3>(ErrorStateFilter::kV, ErrorStateFilter::kV) = Matrix3d::Identity() * vel_var;
+    P(ErrorStateFilter::kTheta, ErrorStateFilter::kTheta) = imu_var;
+    P(ErrorStateFilter::kTheta + 1, ErrorStateFilter::kTheta + 1) = imu_var;
+    // True yaw is unknown by yaw_var, but IMU yaw = yaw + offset is known to imu_var.
+    P(ErrorStateFilter::kTheta + 2, ErrorStateFilter::kTheta + 2) = yaw_var;
+    P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset) = yaw_var + imu_var;
+    P(ErrorStateFilter::kTheta + 2, ErrorStateFilter::kOffset) = -yaw_var;
+    P(ErrorStateFilter::kOffset, ErrorStateFilter::kTheta + 2) = -yaw_var;
+    filter_.reset(s, P);
+
+    initialized_ = true;
+    heading_observed_ = false;
+    in_outage_ = false;
+    filter_utime_ = f.utime;
+    last_fix_used_utime_ = f.utime;
+    ++counters_.gps_used;
+    // The first output is the first multiple of the period after the fix.
+    const int64_t period = config_.output_period_us;
+    next_output_utime_ = (f.utime / period + 1) * period;
+}
+
+void PoseEstimator::apply_velocity(const GpsVelocity& v)
+{
+    if (!initialized_) {
+        return;
+    }
+    const double speed = v.horizontal_speed_mps;
+    const double sv = config_.gps_velocity_sigma_mps;
+    if (speed >= config_.course_min_speed_mps) {
+        double course = geometry::enu_yaw_from_track(v.track_rad);
+        const double var = std::pow(config_.course_sigma_rad, 2) + std::pow(sv / speed, 2);
+        if (!heading_observed_) {
+            // First sight of the true heading: assume the vehicle drives forward.
+            const double imu_var = last_orientation_ ? std::pow(imu_sigma(*last_orientation_), 2)
+                                                     : std::pow(config_.imu_orientation_sigma_rad, 2);
+            filter_.align_heading(course, var, imu_var);
+            heading_observed_ = true;
+            ++counters_.course_used;
+        } else {
+            const double yaw = geometry::euler_from_quaternion(filter_.state().attitude).yaw;
+            if (std::cos(course - yaw) < 0.0) {
+                course = geometry::wrap_angle(course + std::numbers::pi);  // reversing
+            }
+            const UpdateResult r = filter_.update_yaw(course, var, config_.gate_course_chi2);
+            ++(r.applied ? counters_.course_used : counters_.course_rejected);
+        }
+    }
+    const bool horizontal_only = std::isnan(v.vertical_speed_mps);
+    const Vector3d enu(speed * std::sin(v.track_rad), speed * std::cos(v.track_rad),
+                       horizontal_only ? 0.0 : v.vertical_speed_mps);
+    const UpdateResult r =
+        filter_.update_velocity(enu, Matrix3d::Identity() * sv * sv, horizontal_only, config_.gate_velocity_chi2);
+    ++(r.applied ? counters_.velocity_used : counters_.velocity_rejected);
+}
+
+}  // namespace ugv::estimation

@@ -1,0 +1,33 @@
+// A map against ground truth: the height error of the known cells (RMSE, bias), coverage,
+// and obstacle detection (cells whose true height is above a threshold).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "ugv/terrain/terrain_mapper.hpp"
+
+namespace ugv::terrain {
+
+struct MapMetrics
+{
+    int cells = 0;            // cells compared (inside the truth's domain)
+    int known = 0;            // of which known (mean not NaN)
+    double coverage = 0.0;    // known / cells
+    double bias_m = 0.0;      // mean of (map - truth) over known cells
+    double rmse_m = 0.0;      // root mean square of (map - truth) over known cells
+    double mean_cell_variance_m2 = 0.0;  // mean of the cells' own variance (eq. 22 or 32)
+    int obstacle_cells = 0;   // known cells whose truth is above the threshold
+    int obstacles_detected = 0;  // ... and whose map height is above half the threshold
+    int false_obstacles = 0;  // known cells below the threshold that the map puts above half of it
+};
+
+// truth(x_m, y_m): the ENU height at a world position, NaN where it is not defined (those
+// cells are not compared). Cells are placed in the world with the snapshot's pose.
+MapMetrics evaluate(const MapSnapshot& map, const std::function<double(double, double)>& truth,
+                    double obstacle_height_m = 0.2);
+
+// ENU position of the centre of cell (i, j) of the snapshot.
+Eigen::Vector2d cell_centre_world(const MapSnapshot& map, int i, int j);
+
+}  // namespace ugv::terrain

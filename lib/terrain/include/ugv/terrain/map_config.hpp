@@ -1,0 +1,43 @@
+// Configuration of the terrain map (DESIGN.md section 7; report sections 3 and 6).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "ugv/terrain/cell_sums.hpp"
+
+namespace ugv::terrain {
+
+enum class MapMode : int8_t {
+    egocentric = 0,     // the report's map: wraps on forward motion, rotates in theta_d steps
+    world_aligned = 1,  // a 2-D ring buffer on ENU axes that only translates; rotated on output
+};
+
+struct MapConfig
+{
+    double grid_size_m = 0.2;   // G_l
+    double extent_x_m = 30.0;   // X_max, forward of the reference point
+    double extent_y_m = 30.0;   // Y_max, centred on the reference point (-Y_max/2 .. +Y_max/2)
+    double theta_d_rad = 5.0 * M_PI / 180.0;  // rotate once the summed yaw passes this
+    StatisticsKind statistics = StatisticsKind::variance_weighted;
+    MapMode mode = MapMode::egocentric;
+    // The map's reference point in the body frame (m). Row 0 of the map starts here. The
+    // default is the rear bumper (report section 8): an obstacle beside the vehicle stays
+    // in the map until the whole vehicle has passed it.
+    double reference_x_m = -0.5;
+    double reference_y_m = 0.0;
+    bool spread = true;          // section 3.5: spread a point whose sigma exceeds G_l
+    int spread_max_cells = 2;    // footprint half-width cap, cells (1..4)
+    double min_variance_m2 = 1e-6;  // floor of a point's variance (a zero variance would be an infinite weight)
+    int64_t pose_history_us = 2'000'000;
+    double max_interpolation_span_s = 0.1;  // longer point batches are transformed point by point
+
+    int nx() const { return static_cast<int>(std::lround(extent_x_m / grid_size_m)); }
+    int ny() const { return static_cast<int>(std::lround(extent_y_m / grid_size_m)); }
+    // Throws std::invalid_argument naming the field when a value is out of range.
+    void validate() const;
+};
+
+inline constexpr int kMaxSpreadCells = 4;
+
+}  // namespace ugv::terrain

@@ -1,0 +1,118 @@
+// The terrain mapper: poses move the map (wrap, rotate, follow), points are fused into it.
+// The report's TerrainPose (checkScrollMap) is add_pose(); its TerrainMap (makeMap) is
+// fuse(); its integrateData is snapshot(). No I/O, no middleware: the daemon adapts.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ugv/terrain/egocentric_grid.hpp"
+#include "ugv/terrain/map_config.hpp"
+#include "ugv/terrain/pose_history.hpp"
+#include "ugv/terrain/world_grid.hpp"
+
+namespace ugv::terrain {
+
+// One batch of points in the body frame (a view; the arrays hold count values each).
+struct PointBatch
+{
+    int64_t utime_us = 0;                 // point k was measured at utime_us + time_offset_s[k]
+    std::size_t count = 0;
+    const float* x_m = nullptr;           // body frame
+    const float* y_m = nullptr;
+    const float* z_m = nullptr;
+    const float* range_m = nullptr;       // r of eq. 19
+    const float* variance_m2 = nullptr;   // sensor part of the variance
+    const float* time_offset_s = nullptr;
+};
+
+struct MapCounters
+{
+    uint64_t points_fused = 0;
+    uint64_t points_spread = 0;              // fused over several cells (section 3.5)
+    uint64_t rejected_non_finite = 0;        // a NaN/Inf coordinate, range, variance or time
+    uint64_t rejected_before_history = 0;    // older than the pose history
+    uint64_t rejected_after_history = 0;     // newer than the newest pose
+    uint64_t rejected_no_pose = 0;           // no pose received yet
+    uint64_t rejected_outside_map = 0;       // outside the map's extent (never wrapped in)
+    uint64_t poses_rejected_non_finite = 0;
+    uint64_t poses_rejected_out_of_order = 0;
+    uint64_t wraps = 0;                      // rows wrapped (egocentric) or rows+columns followed (world)
+    uint64_t rotations = 0;                  // map rotations (egocentric)
+    uint64_t recentres = 0;                  // lateral re-centring by whole columns (egocentric)
+    uint64_t resets = 0;                     // map cleared after a pose jump larger than the map
+    uint64_t cells_dropped = 0;              // cells rotated out of the map
+};
+
+// What the map says, in unwrapped order (i along the map's +X, j along +Y), ready to publish.
+struct MapSnapshot
+{
+    Pose pose;                    // the pose the map is referenced to
+    double resolution_m = 0.0;
+    int nx = 0, ny = 0;
+    double origin_x_m = 0.0;      // corner of cell (0,0) from the body origin, along the map axes
+    double origin_y_m = 0.0;
+    int wrap_index = 0;           // m_i
+    double x_curr_m = 0.0;        // forward motion not yet wrapped
+    double residual_yaw_rad = 0.0;  // vehicle yaw minus map yaw (|.| < theta_d)
+    MapMode mode = MapMode::egocentric;
+    StatisticsKind statistics = StatisticsKind::variance_weighted;
+    std::vector<float> mean_z_m;  // NaN = unknown
+    std::vector<float> variance_z_m2;
+    std::vector<int32_t> count;
+};
+
+class TerrainMapper
+{
+public:
+    // Throws std::invalid_argument for an invalid configuration.
+    explicit TerrainMapper(const MapConfig& config);
+
+    const MapConfig& config() const { return config_; }
+    const MapCounters& counters() const { return counters_; }
+    const PoseHistory& poses() const { return history_; }
+    bool has_pose() const { return !history_.empty(); }
+
+    // A new pose: kept in the history; the map translates (wrap) and rotates with it.
+    PoseHistory::AddResult add_pose(const Pose& pose);
+    // Fuses every valid point with the pose at its own time; returns the number fused.
+    // No allocation and no whole-map pass.
+    std::size_t fuse(const PointBatch& batch);
+    // The map as it stands, referenced to the newest pose (reuses out's buffers).
+    void snapshot(MapSnapshot& out) const;
+    // The statistics of the cell that holds body-frame point (x, y) now, NaN when unknown
+    // or outside (for tests and evaluation).
+    CellStatistics statistics_at_body(double x_m, double y_m) const;
+    // The sums of all cells (total weight, for tests of conservation).
+    CellSums total() const;
+
+    void clear();
+
+private:
+    struct Frame;
+    Frame local_frame() const;
+    void move_egocentric(const Pose& pose);
+    void move_world(const Pose& pose);
+    template <typename Grid>
+    std::size_t fuse_into(Grid& grid, const PointBatch& batch);
+    template <typename Grid>
+    void fuse_point(Grid& grid, float x, float y, double z, float variance_m2);
+    template <typename Grid>
+    void spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2, float w);
+    Eigen::Vector2d reference_world(const Pose& pose) const;
+
+    MapConfig config_;
+    PoseHistory history_;
+    MapCounters counters_;
+    std::unique_ptr<EgocentricGrid> ego_;
+    std::unique_ptr<WorldGrid> world_;
+    bool anchored_ = false;
+    Eigen::Vector2d anchor_m_{0, 0};  // egocentric: ENU of the local frame's origin
+    double anchor_yaw_rad_ = 0.0;     // egocentric: ENU yaw of the local X axis
+};
+
+}  // namespace ugv::terrain

@@ -1,0 +1,55 @@
+#include "ugv/terrain/evaluation.hpp"
+
+#include <cmath>
+
+namespace ugv::terrain {
+
+Eigen::Vector2d cell_centre_world(const MapSnapshot& m, int i, int j)
+{
+    // Map axes are the body's turned by -residual_yaw, i.e. at world yaw (yaw - residual).
+    const double mx = m.origin_x_m + (i + 0.5) * m.resolution_m;
+    const double my = m.origin_y_m + (j + 0.5) * m.resolution_m;
+    const double axis_yaw = m.pose.yaw_rad() - m.residual_yaw_rad;
+    const double c = std::cos(axis_yaw), s = std::sin(axis_yaw);
+    return m.pose.position_m.head<2>() + Eigen::Vector2d(c * mx - s * my, s * mx + c * my);
+}
+
+MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, double)>& truth, double obstacle_height_m)
+{
+    MapMetrics r;
+    double sum = 0.0, sum2 = 0.0, var_sum = 0.0;
+    int var_n = 0;
+    for (int i = 0; i < m.nx; ++i) {
+        for (int j = 0; j < m.ny; ++j) {
+            const Eigen::Vector2d w = cell_centre_world(m, i, j);
+            const double t = truth(w.x(), w.y());
+            if (!std::isfinite(t)) continue;
+            ++r.cells;
+            const std::size_t k = static_cast<std::size_t>(i * m.ny + j);
+            const double z = m.mean_z_m[k];
+            if (!std::isfinite(z)) continue;
+            ++r.known;
+            const double e = z - t;
+            sum += e;
+            sum2 += e * e;
+            if (std::isfinite(m.variance_z_m2[k])) {
+                var_sum += m.variance_z_m2[k];
+                ++var_n;
+            }
+            const bool obstacle = t > obstacle_height_m;
+            const bool seen = z > 0.5 * obstacle_height_m;
+            r.obstacle_cells += obstacle ? 1 : 0;
+            r.obstacles_detected += obstacle && seen ? 1 : 0;
+            r.false_obstacles += !obstacle && seen ? 1 : 0;
+        }
+    }
+    if (r.cells > 0) r.coverage = static_cast<double>(r.known) / r.cells;
+    if (r.known > 0) {
+        r.bias_m = sum / r.known;
+        r.rmse_m = std::sqrt(sum2 / r.known);
+    }
+    if (var_n > 0) r.mean_cell_variance_m2 = var_sum / var_n;
+    return r;
+}
+
+}  // namespace ugv::terrain

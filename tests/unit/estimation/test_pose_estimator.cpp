@@ -1,0 +1,368 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "run_helpers.hpp"
+
+using namespace ugv::estimation;
+using namespace ugv::estimation::synthetic;
+
+namespace {
+
+double seconds(const Run& run, int64_t utime)
+{
+    return static_cast<double>(utime - run.start_utime) * 1e-6;
+}
+
+struct Score
+{
+    double rms_horizontal_m = 0.0;
+    double max_horizontal_m = 0.0;
+    double rms_yaw_rad = 0.0;
+    int n = 0;
+};
+
+Score score(const std::vector<PoseEstimate>& poses, const Trajectory& t, const Run& run, double from_s, double to_s)
+{
+    Score s;
+    for (const PoseEstimate& p : poses) {
+        const double ts = seconds(run, p.utime);
+        if (ts < from_s || ts > to_s) {
+            continue;
+        }
+        const PoseError e = error_of(p, truth_at(t, run, p.utime));
+        s.rms_horizontal_m += e.position.head<2>().squaredNorm();
+        s.max_horizontal_m = std::max(s.max_horizontal_m, e.position.head<2>().norm());
+        s.rms_yaw_rad += e.yaw * e.yaw;
+        ++s.n;
+    }
+    REQUIRE(s.n > 0);
+    s.rms_horizontal_m = std::sqrt(s.rms_horizontal_m / s.n);
+    s.rms_yaw_rad = std::sqrt(s.rms_yaw_rad / s.n);
+    return s;
+}
+
+bool same_bits(const PoseEstimate& a, const PoseEstimate& b)
+{
+    const auto eq = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) == 0; };
+    return a.utime == b.utime && a.status == b.status && eq(a.position, b.position) && eq(a.velocity, b.velocity) &&
+           eq(a.orientation.coeffs(), b.orientation.coeffs()) && eq(a.error_covariance, b.error_covariance) &&
+           eq(a.heading_offset, b.heading_offset);
+}
+
+const PoseEstimate* at(const std::vector<PoseEstimate>& poses, const Run& run, double t_s)
+{
+    const int64_t u = run.start_utime + static_cast<int64_t>(std::llround(t_s * 1e6));
+    for (const PoseEstimate& p : poses) {
+        if (p.utime == u) {
+            return &p;
+        }
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("straight line from rest: DEGRADED until moving, then the yaw and its offset converge")
+{
+    const Noise noise;
+    const double heading = 0.5;
+    const Trajectory t = straight(heading, 0.5, 3.0);
+    const Run run = simulate(t, noise, kTestDatum, 40.0, 1);
+    PoseEstimator est(matched_config(noise));
+    const auto poses = run_all(est, run.inputs);
+
+    // Standing still at first (below course_min_speed until t = 2 s): heading not observed.
+    const PoseEstimate* early = at(poses, run, 1.0);
+    REQUIRE(early);
+    CHECK(early->status == PoseStatus::degraded);
+    CHECK_FALSE(early->heading_observed);
+    // Before the course is seen the IMU's magnetic yaw is all there is: off by the offset.
+    CHECK(std::fabs(ugv::geometry::wrap_angle(early->yaw - heading) - noise.heading_offset_rad) < 0.05);
+
+    const Score s = score(poses, t, run, 10.0, 40.0);
+    CHECK(s.rms_horizontal_m < 0.2);  // GPS alone: 0.5 m per axis
+    CHECK(s.rms_yaw_rad < 0.01);
+    const PoseEstimate& last = poses.back();
+    CHECK(last.status == PoseStatus::ok);
+    CHECK(last.heading_observed);
+    CHECK(last.heading_offset == Approx(noise.heading_offset_rad).margin(3.0 * last.heading_offset_sigma + 1e-3));
+    CHECK(last.heading_offset_sigma < 0.01);
+    CHECK(est.counters().gps_rejected == 0);
+    CHECK(est.counters().outages == 0);
+}
+
+TEST_CASE("circle and figure eight: position and attitude error against the truth")
+{
+    const Noise noise;
+    for (const auto& [name, t] :
+         {std::pair{"circle", circle(20.0, 3.0)}, std::pair{"eight", figure_eight(30.0, 0.1)}}) {
+        INFO(name);
+        const Run run = simulate(t, noise, kTestDatum, 60.0, 2);
+        PoseEstimator est(matched_config(noise));
+        const auto poses = run_all(est, run.inputs);
+        const Score s = score(poses, t, run, 10.0, 60.0);
+        CHECK(s.rms_horizontal_m < 0.2);
+        CHECK(s.max_horizontal_m < 0.6);
+        CHECK(s.rms_yaw_rad < 0.01);
+        CHECK(poses.back().status == PoseStatus::ok);
+        // Roll and pitch come from the IMU alone (sigma 0.01 rad per sample), so their
+        // reported sigma must be well below that after averaging.
+        CHECK(std::sqrt(poses.back().orientation_covariance(0, 0)) < 0.01);
+        CHECK(std::sqrt(poses.back().orientation_covariance(2, 2)) < 0.01);
+    }
+}
+
+TEST_CASE("poses come on the 100 ms grid of data time, one per period")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 10.0, 3);
+    PoseEstimator est(matched_config(noise));
+    const auto poses = run_all(est, run.inputs);
+    REQUIRE(poses.size() == 100);  // first fix at 3 ms, last input at 10.0 s
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        CHECK(poses[i].utime % 100'000 == 0);
+        if (i > 0) {
+            CHECK(poses[i].utime - poses[i - 1].utime == 100'000);
+        }
+    }
+    CHECK(est.counters().poses == 100);
+}
+
+TEST_CASE("a 30 m multipath jump is rejected and counted; the pose does not move")
+{
+    const Noise noise;
+    const Trajectory t = circle(20.0, 3.0);
+    const Run run = simulate(t, noise, kTestDatum, 40.0, 4);
+    const LocalFrame frame(kTestDatum);
+    std::vector<Input> inputs = run.inputs;
+    int jumped = 0;
+    for (Input& in : inputs) {
+        if (auto* f = std::get_if<GpsFix>(&in); f && seconds(run, f->utime) >= 20.0 && seconds(run, f->utime) < 21.5) {
+            const Eigen::Vector3d enu = frame.to_enu(f->latitude_deg, f->longitude_deg, f->height_m);
+            const Eigen::Vector3d llh = frame.to_geodetic(enu + Eigen::Vector3d(30.0, 0.0, 0.0));
+            f->latitude_deg = llh.x();
+            f->longitude_deg = llh.y();
+            ++jumped;
+        }
+    }
+    REQUIRE(jumped == 8);
+    // The clean run's own gate rejections (a 0.1 % tail of honest noise) plus the 8 jumped.
+    PoseEstimator clean(matched_config(noise));
+    run_all(clean, run.inputs);
+    PoseEstimator est(matched_config(noise));
+    const auto poses = run_all(est, inputs);
+    CHECK(est.counters().gps_rejected == clean.counters().gps_rejected + 8);
+    CHECK(est.counters().gps_resets == 0);
+    const Score s = score(poses, t, run, 19.0, 25.0);
+    CHECK(s.max_horizontal_m < 0.6);
+    // 1.8 s between the last good fix and the next is longer than gps_timeout (1 s): one outage.
+    CHECK(est.counters().outages == 1);
+}
+
+TEST_CASE("a 20 s GPS outage: prediction only, covariance grows, DEGRADED, then recovery")
+{
+    const Noise noise;
+    const Trajectory t = circle(20.0, 3.0);
+    const Run run = simulate(t, noise, kTestDatum, 60.0, 5);
+    std::vector<Input> inputs;
+    for (const Input& in : run.inputs) {
+        const double ts = seconds(run, utime_of(in));
+        if (std::holds_alternative<ImuSample>(in) || ts < 20.0 || ts >= 40.0) {
+            inputs.push_back(in);
+        }
+    }
+    PoseEstimator est(matched_config(noise));
+    const auto poses = run_all(est, inputs);
+    const PoseEstimate* before = at(poses, run, 19.9);
+    const PoseEstimate* mid = at(poses, run, 30.0);
+    const PoseEstimate* end = at(poses, run, 39.9);
+    const PoseEstimate* after = at(poses, run, 50.0);
+    REQUIRE((before && mid && end && after));
+    CHECK(before->status == PoseStatus::ok);
+    CHECK(mid->status == PoseStatus::degraded);
+    CHECK(mid->gps_outage);
+    CHECK(end->status == PoseStatus::degraded);
+    CHECK(after->status == PoseStatus::ok);
+    CHECK(est.counters().outages == 1);
+    // The covariance grows through the outage.
+    CHECK(mid->position_covariance.trace() > 10.0 * before->position_covariance.trace());
+    CHECK(end->position_covariance.trace() > 4.0 * mid->position_covariance.trace());
+    CHECK(end->velocity_covariance.trace() > mid->velocity_covariance.trace());
+    // ... and describes the error: within 3 sigma (per axis) at the end of the outage.
+    const PoseError e = error_of(*end, truth_at(t, run, end->utime));
+    CHECK(std::fabs(e.position.x()) < 3.0 * std::sqrt(end->position_covariance(0, 0)));
+    CHECK(std::fabs(e.position.y()) < 3.0 * std::sqrt(end->position_covariance(1, 1)));
+    // Recovery: the first fixes after the outage are accepted (the grown covariance lets
+    // them through the gate) and the error is back to normal.
+    CHECK(est.counters().gps_rejected == 0);
+    const Score s = score(poses, t, run, 45.0, 60.0);
+    CHECK(s.rms_horizontal_m < 0.2);
+}
+
+TEST_CASE("determinism: the same inputs give bit-identical poses")
+{
+    const Noise noise;
+    const Run run = simulate(figure_eight(30.0, 0.1), noise, kTestDatum, 20.0, 6);
+    PoseEstimator a(matched_config(noise)), b(matched_config(noise));
+    const auto pa = run_all(a, run.inputs);
+    const auto pb = run_all(b, run.inputs);
+    REQUIRE(pa.size() == pb.size());
+    for (std::size_t i = 0; i < pa.size(); ++i) {
+        REQUIRE(same_bits(pa[i], pb[i]));
+    }
+}
+
+TEST_CASE("inputs out of order within the buffer give the same poses; too late ones are counted")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 20.0, 7);
+    PoseEstimator in_order(matched_config(noise));
+    const auto reference = run_all(in_order, run.inputs);
+
+    // Every GPS message delivered 60 ms late (after the IMU samples that followed it):
+    // inside the 150 ms buffer.
+    std::vector<std::pair<int64_t, Input>> delivery;
+    for (const Input& in : run.inputs) {
+        const bool gps = !std::holds_alternative<ImuSample>(in);
+        delivery.emplace_back(utime_of(in) + (gps ? 60'000 : 0), in);
+    }
+    std::stable_sort(delivery.begin(), delivery.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    PoseEstimator shuffled(matched_config(noise));
+    for (const auto& [when, in] : delivery) {
+        feed(shuffled, in);
+    }
+    shuffled.flush();
+    const auto poses = shuffled.take_poses();
+    CHECK(shuffled.counters().reordered > 0);
+    CHECK(shuffled.counters().late == 0);
+    REQUIRE(poses.size() == reference.size());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        REQUIRE(same_bits(poses[i], reference[i]));
+    }
+
+    // One fix 1 s old arriving now is refused and counted, and changes nothing.
+    PoseEstimator late(matched_config(noise));
+    int64_t injected_at = 0;
+    for (const Input& in : run.inputs) {
+        feed(late, in);
+        if (injected_at == 0 && seconds(run, utime_of(in)) > 10.0) {
+            GpsFix old = std::get<GpsFix>(run.inputs[1]);  // from t = 3 ms
+            old.utime = utime_of(in) - 1'000'000;
+            late.add(old);
+            injected_at = old.utime;
+        }
+    }
+    late.flush();
+    CHECK(late.counters().late == 1);
+    const auto late_poses = late.take_poses();
+    REQUIRE(late_poses.size() == reference.size());
+    CHECK(same_bits(late_poses.back(), reference.back()));
+}
+
+TEST_CASE("non-finite inputs are refused, counted, and change nothing")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 10.0, 8);
+    PoseEstimator clean(matched_config(noise));
+    const auto reference = run_all(clean, run.inputs);
+
+    PoseEstimator dirty(matched_config(noise));
+    for (const Input& in : run.inputs) {
+        feed(dirty, in);
+        if (auto* s = std::get_if<ImuSample>(&in); s && s->utime % 1'000'000 == 0) {
+            ImuSample bad = *s;
+            bad.accel_mps2.z() = std::numeric_limits<double>::infinity();
+            dirty.add(bad);
+            GpsFix nan_fix;
+            nan_fix.utime = s->utime;
+            nan_fix.latitude_deg = std::numeric_limits<double>::quiet_NaN();
+            nan_fix.longitude_deg = 0.0;
+            nan_fix.height_m = 0.0;
+            nan_fix.quality = FixQuality::rtk_fixed;
+            dirty.add(nan_fix);
+            GpsVelocity nan_vel;
+            nan_vel.utime = s->utime;
+            nan_vel.horizontal_speed_mps = 1.0;
+            dirty.add(nan_vel);  // track NaN
+        }
+    }
+    dirty.flush();
+    CHECK(dirty.counters().non_finite == 3 * 11);  // t = 0 .. 10 s
+    const auto poses = dirty.take_poses();
+    REQUIRE(poses.size() == reference.size());
+    CHECK(same_bits(poses.back(), reference.back()));
+}
+
+TEST_CASE("datum: configured, or the first fix of the configured quality")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 5.0, 9);
+
+    SECTION("configured: every pose carries it and positions are relative to it")
+    {
+        PoseEstimator est(matched_config(noise));
+        const auto poses = run_all(est, run.inputs);
+        REQUIRE(!poses.empty());
+        CHECK(poses.front().datum.latitude_deg == kTestDatum.latitude_deg);
+        CHECK(poses.front().datum.longitude_deg == kTestDatum.longitude_deg);
+        CHECK(poses.front().datum.height_m == kTestDatum.height_m);
+        CHECK(poses.front().position.x() == Approx(20.0).margin(1.5));  // the circle starts at (20, 0)
+    }
+    SECTION("first fix: the datum is that fix, so the first position is near zero")
+    {
+        EstimatorConfig c = matched_config(noise);
+        c.datum.reset();
+        PoseEstimator est(c);
+        const auto poses = run_all(est, run.inputs);
+        REQUIRE(!poses.empty());
+        const GpsFix& first = std::get<GpsFix>(run.inputs[1]);
+        CHECK(poses.front().datum.latitude_deg == first.latitude_deg);
+        CHECK(poses.front().datum.longitude_deg == first.longitude_deg);
+        CHECK(poses.front().datum.height_m == first.height_m);
+        CHECK(poses.front().position.head<2>().norm() < 1.5);
+    }
+    SECTION("first fix of a quality never reached: no datum, no pose")
+    {
+        EstimatorConfig c = matched_config(noise);
+        c.datum.reset();
+        c.datum_min_quality = FixQuality::rtk_fixed;  // the synthetic fixes are DGPS
+        PoseEstimator est(c);
+        CHECK(run_all(est, run.inputs).empty());
+        CHECK_FALSE(est.frame().has_value());
+        CHECK(est.counters().gps_low_quality == 25);
+    }
+}
+
+TEST_CASE("fixes below min_fix_quality are not used")
+{
+    const Noise noise;
+    Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 5.0, 10);
+    for (Input& in : run.inputs) {
+        if (auto* f = std::get_if<GpsFix>(&in)) {
+            f->quality = FixQuality::single;
+        }
+    }
+    EstimatorConfig c = matched_config(noise);
+    c.min_fix_quality = FixQuality::dgps;
+    PoseEstimator est(c);
+    CHECK(run_all(est, run.inputs).empty());
+    CHECK(est.counters().gps_low_quality == 25);
+    CHECK(est.counters().gps_used == 0);
+}
+
+TEST_CASE("invalid configurations are refused")
+{
+    EstimatorConfig c;
+    c.output_period_us = 0;
+    CHECK_THROWS_AS(PoseEstimator(c), std::invalid_argument);
+    c = EstimatorConfig{};
+    c.process.accel = -1.0;
+    CHECK_THROWS_AS(PoseEstimator(c), std::invalid_argument);
+    c = EstimatorConfig{};
+    c.min_fix_quality = FixQuality::none;
+    CHECK_THROWS_AS(PoseEstimator(c), std::invalid_argument);
+}

@@ -1,0 +1,37 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "ugv/terrain/evaluation.hpp"
+
+using namespace ugv::terrain;
+
+TEST_CASE("evaluate: bias, RMSE, coverage and obstacles against a height field")
+{
+    MapSnapshot m;
+    m.nx = 2;
+    m.ny = 2;
+    m.resolution_m = 1.0;
+    m.origin_x_m = 0.0;
+    m.origin_y_m = -1.0;
+    m.pose.position_m = {10.0, 20.0, 0.0};
+    m.pose.orientation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());  // facing north
+    // Cell (i, j) centre in the map frame: (i + 0.5, j - 0.5); facing north, world = (10 - y, 20 + x).
+    CHECK(cell_centre_world(m, 1, 0).x() == Approx(10.5));
+    CHECK(cell_centre_world(m, 1, 0).y() == Approx(21.5));
+    m.mean_z_m = {0.05f, NAN, 1.0f, -0.1f};     // (0,0) (0,1) (1,0) (1,1)
+    m.variance_z_m2 = {0.01f, NAN, 0.03f, 0.02f};
+    // Truth: ground at 0 except an obstacle of 1.2 m around (10.5, 21.5), i.e. cell (1, 0).
+    auto truth = [](double x, double y) { return (std::abs(x - 10.5) < 0.4 && std::abs(y - 21.5) < 0.4) ? 1.2 : 0.0; };
+    const MapMetrics r = evaluate(m, truth, 0.2);
+    CHECK(r.cells == 4);
+    CHECK(r.known == 3);
+    CHECK(r.coverage == Approx(0.75));
+    // Errors 0.05, -0.2, -0.1: bias -0.25/3, RMSE sqrt((0.0025 + 0.04 + 0.01) / 3).
+    CHECK(r.bias_m == Approx(-0.25 / 3).epsilon(1e-6));
+    CHECK(r.rmse_m == Approx(std::sqrt(0.0525 / 3)).epsilon(1e-6));
+    CHECK(r.mean_cell_variance_m2 == Approx(0.02).epsilon(1e-6));
+    CHECK(r.obstacle_cells == 1);
+    CHECK(r.obstacles_detected == 1);
+    CHECK(r.false_obstacles == 0);
+}

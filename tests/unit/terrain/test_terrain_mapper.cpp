@@ -1,0 +1,345 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "ugv/terrain/terrain_mapper.hpp"
+
+using namespace ugv::terrain;
+
+namespace {
+
+constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+
+Pose pose_at(int64_t t_us, double x, double y, double yaw_rad, double orientation_var_rad2 = 0.0)
+{
+    Pose p;
+    p.utime_us = t_us;
+    p.position_m = {x, y, 0.0};
+    p.orientation = Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ());
+    p.orientation_covariance_rad2 = Eigen::Matrix3d::Identity() * orientation_var_rad2;
+    return p;
+}
+
+// Points in the body frame, all at one time, with a given sensor variance and range.
+struct Points
+{
+    std::vector<float> x, y, z, range, variance, t;
+    void add(float px, float py, float pz, float var_m2 = 0.01f, float t_s = 0.0f, float r_m = -1.0f)
+    {
+        x.push_back(px);
+        y.push_back(py);
+        z.push_back(pz);
+        range.push_back(std::isnan(r_m) || r_m >= 0.0f ? r_m : std::sqrt(px * px + py * py));
+        variance.push_back(var_m2);
+        t.push_back(t_s);
+    }
+    PointBatch batch(int64_t utime_us) const
+    {
+        PointBatch b;
+        b.utime_us = utime_us;
+        b.count = x.size();
+        b.x_m = x.data();
+        b.y_m = y.data();
+        b.z_m = z.data();
+        b.range_m = range.data();
+        b.variance_m2 = variance.data();
+        b.time_offset_s = t.data();
+        return b;
+    }
+};
+
+MapConfig base_config()
+{
+    MapConfig c;
+    c.spread = false;
+    return c;
+}
+
+int known_cells(const MapSnapshot& s)
+{
+    int n = 0;
+    for (float z : s.mean_z_m) n += std::isnan(z) ? 0 : 1;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("driving 1.0 m forward at G_l = 0.2 wraps 5 rows and clears them")
+{
+    TerrainMapper m(base_config());  // reference point: rear bumper, 0.5 m behind the body origin
+    REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+    // One point in each of the unwrapped rows 0..6 (row k's centre is 0.1 + 0.2 k m ahead of
+    // the rear bumper), column 75, height k.
+    Points p;
+    for (int k = 0; k < 7; ++k) p.add(-0.5f + 0.1f + 0.2f * static_cast<float>(k), 0.1f, static_cast<float>(k));
+    REQUIRE(m.fuse(p.batch(0)) == 7);
+    MapSnapshot s;
+    m.snapshot(s);
+    REQUIRE(known_cells(s) == 7);
+    CHECK(s.mean_z_m[0 * 150 + 75] == 0.0f);
+    CHECK(s.mean_z_m[6 * 150 + 75] == 6.0f);
+
+    REQUIRE(m.add_pose(pose_at(1'000'000, 1.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+    CHECK(m.counters().wraps == 5);
+    m.snapshot(s);
+    CHECK(s.wrap_index == 5);
+    CHECK(s.x_curr_m == Approx(0.0).margin(1e-9));
+    // The rows driven over are gone; old row 5 is now row 0, old row 6 row 1.
+    CHECK(known_cells(s) == 2);
+    CHECK(s.mean_z_m[0 * 150 + 75] == 5.0f);
+    CHECK(s.mean_z_m[1 * 150 + 75] == 6.0f);
+    // The five recycled rows are now the far rows, and empty.
+    for (int i = 145; i < 150; ++i) CHECK(s.count[static_cast<std::size_t>(i * 150 + 75)] == 0);
+    // A point at the far end now lands in a recycled row.
+    Points far;
+    far.add(-0.5f + 1.0f + 29.9f - 1.0f, 0.1f, 9.0f);  // body x 29.4 -> 29.9 from the rear bumper
+    REQUIRE(m.fuse(far.batch(1'000'000)) == 1);
+    m.snapshot(s);
+    CHECK(s.mean_z_m[149 * 150 + 75] == 9.0f);
+}
+
+TEST_CASE("forward motion is projected on the heading; the remainder is kept")
+{
+    TerrainMapper m(base_config());
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    m.add_pose(pose_at(100'000, 0.35, 0.0, 0.0));  // 1 row and 0.15 m
+    CHECK(m.counters().wraps == 1);
+    m.add_pose(pose_at(200'000, 0.45, 0.0, 0.0));  // 0.25 m of 0.4: still 1 row, remainder 0.05
+    CHECK(m.counters().wraps == 2);
+    MapSnapshot s;
+    m.snapshot(s);
+    CHECK(s.x_curr_m == Approx(0.05));
+    // Sideways motion does not advance the map (it re-centres by whole columns).
+    m.add_pose(pose_at(300'000, 0.45, 0.5, 0.0));
+    CHECK(m.counters().wraps == 2);
+    CHECK(m.counters().recentres == 1);
+    // Reversing goes back.
+    m.add_pose(pose_at(400'000, 0.0, 0.5, 0.0));
+    CHECK(m.counters().wraps == 4);  // x_curr 0.05 - 0.45 = -0.40: two rows back
+    m.snapshot(s);
+    CHECK(s.x_curr_m == Approx(0.0).margin(1e-9));
+}
+
+static void turn_ninety_degrees(MapMode mode)
+{
+    MapConfig c = base_config();
+    c.mode = mode;
+    c.reference_x_m = 0.0;  // spin about the reference point
+    c.theta_d_rad = 5.0 * M_PI / 180.0;
+    TerrainMapper m(c);
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    // An obstacle 5.1 m ahead and 2.1 m to the left (a cell centre), 1 m high.
+    Points p;
+    p.add(5.1f, 2.1f, 1.0f);
+    REQUIRE(m.fuse(p.batch(0)) == 1);
+    // Turn left 90 deg in place, 1 deg per pose: 18 rotations of theta_d.
+    for (int k = 1; k <= 90; ++k)
+        REQUIRE(m.add_pose(pose_at(k * 50'000, 0.0, 0.0, k * M_PI / 180.0)) == PoseHistory::AddResult::added);
+    if (mode == MapMode::egocentric) CHECK(m.counters().rotations >= 17);
+    // The obstacle is now 2.1 m ahead and 5.1 m to the right.
+    const CellStatistics at = m.statistics_at_body(2.1, -5.1);
+    CHECK(at.mean_z_m == Approx(1.0));
+    MapSnapshot s;
+    m.snapshot(s);
+    REQUIRE(known_cells(s) == 1);
+    // Find it in the published layout: cell (i, j) centre, in the map axes, from the body origin.
+    std::size_t k = 0;
+    while (std::isnan(s.mean_z_m[k])) ++k;
+    const double mx = s.origin_x_m + (static_cast<double>(k / 150) + 0.5) * s.resolution_m;
+    const double my = s.origin_y_m + (static_cast<double>(k % 150) + 0.5) * s.resolution_m;
+    // Map axes are the body axes turned by -residual_yaw: body = R(-residual_yaw) map.
+    const double cr = std::cos(s.residual_yaw_rad), sr = std::sin(s.residual_yaw_rad);
+    const double bx = cr * mx + sr * my, by = -sr * mx + cr * my;
+    CHECK(std::abs(bx - 2.1) < 0.15);
+    CHECK(std::abs(by + 5.1) < 0.15);
+    CHECK(s.mean_z_m[k] == 1.0f);
+}
+
+TEST_CASE("a single-cell obstacle lands in the right cell after a 90 deg turn, egocentric")
+{
+    turn_ninety_degrees(MapMode::egocentric);
+}
+
+TEST_CASE("a single-cell obstacle lands in the right cell after a 90 deg turn, world-aligned")
+{
+    turn_ninety_degrees(MapMode::world_aligned);
+}
+
+TEST_CASE("the rear-bumper reference keeps an obstacle beside the vehicle")
+{
+    MapConfig rear = base_config();
+    MapConfig front = base_config();
+    front.reference_x_m = 2.0;  // the report's front bumper
+    TerrainMapper a(rear), b(front);
+    Points p;
+    p.add(0.7f, 1.5f, 0.8f);  // beside the vehicle, between its bumpers
+    for (TerrainMapper* m : {&a, &b}) {
+        m->add_pose(pose_at(0, 0.0, 0.0, 0.0));
+        m->fuse(p.batch(0));
+    }
+    CHECK(a.statistics_at_body(0.7, 1.5).mean_z_m == Approx(0.8));
+    CHECK(std::isnan(b.statistics_at_body(0.7, 1.5).mean_z_m));
+    CHECK(b.counters().rejected_outside_map == 1);
+}
+
+TEST_CASE("NaN points and NaN poses never reach a cell")
+{
+    TerrainMapper m(base_config());
+    Pose bad = pose_at(0, 0.0, 0.0, 0.0);
+    bad.position_m.y() = std::numeric_limits<double>::quiet_NaN();
+    CHECK(m.add_pose(bad) == PoseHistory::AddResult::non_finite);
+    Pose bad_q = pose_at(0, 0.0, 0.0, 0.0);
+    bad_q.orientation.w() = std::numeric_limits<double>::infinity();
+    CHECK(m.add_pose(bad_q) == PoseHistory::AddResult::non_finite);
+    CHECK(m.counters().poses_rejected_non_finite == 2);
+    CHECK_FALSE(m.has_pose());
+    Points p;
+    p.add(3.0f, 0.0f, 1.0f);
+    CHECK(m.fuse(p.batch(0)) == 0);
+    CHECK(m.counters().rejected_no_pose == 1);
+
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    Points q;
+    q.add(kNan, 0.0f, 1.0f);
+    q.add(3.0f, kNan, 1.0f);
+    q.add(3.0f, 0.0f, kNan);
+    q.add(3.0f, 0.0f, 1.0f, kNan);
+    q.add(3.0f, 0.0f, 1.0f, 0.01f, kNan);
+    q.add(3.0f, 0.0f, 1.0f, 0.01f, 0.0f, kNan);
+    q.add(std::numeric_limits<float>::infinity(), 0.0f, 1.0f);
+    q.add(3.0f, 0.0f, 1.0f, -0.01f);  // a negative variance is not a variance
+    CHECK(m.fuse(q.batch(0)) == 0);
+    CHECK(m.counters().rejected_non_finite == 8);
+    CHECK(m.total().n == 0);
+    CHECK(m.total().z_w == 0.0);
+    MapSnapshot s;
+    m.snapshot(s);
+    CHECK(known_cells(s) == 0);
+}
+
+TEST_CASE("each point is transformed with the pose at its own time")
+{
+    MapConfig c = base_config();
+    c.reference_x_m = 0.0;
+    TerrainMapper m(c);
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    m.add_pose(pose_at(1'000'000, 1.0, 0.0, 0.0));
+    // Slow path (the batch spans 0.5 s): points at 0.25 s and 0.75 s.
+    Points slow;
+    slow.add(2.05f, 0.1f, 1.0f, 0.01f, 0.25f);  // world x 2.30 -> body x now 1.30
+    slow.add(2.05f, 0.1f, 2.0f, 0.01f, 0.75f);  // world x 2.80 -> body x now 1.80
+    REQUIRE(m.fuse(slow.batch(0)) == 2);
+    CHECK(m.statistics_at_body(1.30, 0.1).mean_z_m == Approx(1.0));
+    CHECK(m.statistics_at_body(1.80, 0.1).mean_z_m == Approx(2.0));
+    // Fast path (span 20 ms): blended between the poses at both ends.
+    Points fast;
+    fast.add(4.05f, 0.3f, 3.0f, 0.01f, 0.0f);   // at 0.50 s: world 4.55 -> body 3.55
+    fast.add(4.05f, 0.5f, 4.0f, 0.01f, 0.02f);  // at 0.52 s: world 4.57 -> body 3.57
+    REQUIRE(m.fuse(fast.batch(500'000)) == 2);
+    CHECK(m.statistics_at_body(3.55, 0.3).mean_z_m == Approx(3.0));
+    CHECK(m.statistics_at_body(3.57, 0.5).mean_z_m == Approx(4.0));
+    CHECK(m.total().n == 4);
+    // Out of the history: before the oldest and after the newest pose, counted by reason.
+    Points out;
+    out.add(2.0f, 0.0f, 1.0f, 0.01f, -0.5f);
+    out.add(2.0f, 0.0f, 1.0f, 0.01f, 1.5f);
+    out.add(2.0f, 0.0f, 1.0f, 0.01f, 0.1f);
+    CHECK(m.fuse(out.batch(0)) == 1);
+    CHECK(m.counters().rejected_before_history == 1);
+    CHECK(m.counters().rejected_after_history == 1);
+}
+
+TEST_CASE("eq. 19: the orientation error comes from the pose covariance at the point's time")
+{
+    MapConfig c = base_config();
+    TerrainMapper m(c);
+    Pose a = pose_at(0, 0.0, 0.0, 0.0);
+    a.orientation_covariance_rad2.diagonal() << 1e-4, 4e-4, 1e-4;
+    Pose b = pose_at(100'000, 0.0, 0.0, 0.0);
+    b.orientation_covariance_rad2.diagonal() << 1e-4, 8e-4, 1e-4;
+    m.add_pose(a);
+    m.add_pose(b);
+    Points p;
+    p.add(3.0f, 0.1f, 0.5f, 0.001f, 0.05f, 5.0f);  // r = 5 m at 50 ms: de^2 = 6e-4 rad^2
+    REQUIRE(m.fuse(p.batch(0)) == 1);
+    // s2 = 0.001 + 2 * 25 * 6e-4 = 0.031 m^2; weight 1/0.031.
+    CHECK(m.total().z_w == Approx(1.0 / 0.031).epsilon(1e-5));
+}
+
+TEST_CASE("section 3.5: spreading conserves total weight")
+{
+    MapConfig c;
+    c.spread = true;
+    c.spread_max_cells = 2;
+    TerrainMapper m(c);
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    Points p;
+    p.add(10.03f, 0.07f, 2.0f, 0.09f);   // sigma 0.3 m > G_l: spread
+    p.add(12.0f, -3.0f, 1.0f, 0.01f);    // sigma 0.1 m: one cell
+    p.add(20.05f, 1.05f, 3.0f, 4.0f);    // sigma 2 m: capped at 2 cells each way
+    REQUIRE(m.fuse(p.batch(0)) == 3);
+    CHECK(m.counters().points_spread == 2);
+    const CellSums total = m.total();
+    CHECK(total.z_w == Approx(1.0 / 0.09 + 1.0 / 0.01 + 1.0 / 4.0).epsilon(1e-5));
+    CHECK(total.z_wz == Approx(2.0 / 0.09 + 1.0 / 0.01 + 3.0 / 4.0).epsilon(1e-5));
+    MapSnapshot s;
+    m.snapshot(s);
+    // 10.53 +/- 0.3 m from the rear bumper spans rows 51-54, 0.07 +/- 0.3 columns 73-76: 4 x 4;
+    // then one cell; then +/- 0.4 m (2 cells) around an off-edge point: 5 x 5.
+    CHECK(known_cells(s) == 16 + 1 + 25);
+    for (std::size_t k = 0; k < s.mean_z_m.size(); ++k)
+        if (!std::isnan(s.mean_z_m[k])) CHECK((s.mean_z_m[k] == Approx(2.0f) || s.mean_z_m[k] == Approx(1.0f) || s.mean_z_m[k] == Approx(3.0f)));
+}
+
+TEST_CASE("spreading conserves total weight at the map's edge and in the world-aligned mode")
+{
+    MapConfig c;
+    c.spread = true;
+    c.mode = MapMode::world_aligned;
+    TerrainMapper m(c);
+    m.add_pose(pose_at(0, 100.0, -40.0, 0.7));
+    Points p;
+    p.add(5.0f, 0.0f, 1.0f, 0.16f);
+    REQUIRE(m.fuse(p.batch(0)) == 1);
+    CHECK(m.total().z_w == Approx(1.0 / 0.16).epsilon(1e-5));
+}
+
+TEST_CASE("classical and variance-weighted statistics differ as eq. 21 vs 23 say")
+{
+    MapConfig c = base_config();
+    c.reference_x_m = 0.0;
+    MapConfig k = c;
+    k.statistics = StatisticsKind::classical;
+    TerrainMapper vw(c), cl(k);
+    Points p;
+    p.add(3.1f, 0.1f, 1.0f, 1.0f);
+    p.add(3.1f, 0.1f, 3.0f, 3.0f);
+    for (TerrainMapper* m : {&vw, &cl}) {
+        m->add_pose(pose_at(0, 0.0, 0.0, 0.0));
+        m->fuse(p.batch(0));
+    }
+    CHECK(vw.statistics_at_body(3.1, 0.1).mean_z_m == Approx(1.5));
+    CHECK(vw.statistics_at_body(3.1, 0.1).variance_z_m2 == Approx(0.75));
+    CHECK(cl.statistics_at_body(3.1, 0.1).mean_z_m == Approx(2.0));
+    CHECK(cl.statistics_at_body(3.1, 0.1).variance_z_m2 == Approx(2.0));
+}
+
+TEST_CASE("a pose jump larger than the map resets it; bad configurations are refused")
+{
+    TerrainMapper m(base_config());
+    m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+    Points p;
+    p.add(3.0f, 0.0f, 1.0f);
+    m.fuse(p.batch(0));
+    m.add_pose(pose_at(100'000, 500.0, 0.0, 0.0));
+    CHECK(m.counters().resets == 1);
+    CHECK(m.total().n == 0);
+    MapConfig bad;
+    bad.grid_size_m = 0.0;
+    CHECK_THROWS_AS(TerrainMapper(bad), std::invalid_argument);
+    bad = MapConfig{};
+    bad.theta_d_rad = -1.0;
+    CHECK_THROWS_AS(TerrainMapper(bad), std::invalid_argument);
+}

@@ -1,0 +1,186 @@
+// ugv-eval: terrain maps against ground truth.
+//   ugv-eval compare LOG [--flat Z] [--box X0,Y0,X1,Y1,H ...] [--all]
+//       the maps of a log (the last, or all) against a height field: RMSE, bias, coverage,
+//       obstacle detection.
+//   ugv-eval floor-study [--trials N] [--seed S] [--spread]
+//       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
+#include <lcm/lcm-cpp.hpp>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <ugv/terrain_map_t.hpp>
+
+#include "floor_study.hpp"
+
+using namespace ugv;
+using namespace ugv::terrain;
+
+namespace {
+
+MapSnapshot to_snapshot(const terrain_map_t& m)
+{
+    MapSnapshot s;
+    s.pose.utime_us = m.pose.utime;
+    s.pose.position_m = {m.pose.position[0], m.pose.position[1], m.pose.position[2]};
+    s.pose.orientation =
+        Eigen::Quaterniond(m.pose.orientation[0], m.pose.orientation[1], m.pose.orientation[2], m.pose.orientation[3]);
+    s.resolution_m = m.resolution;
+    s.nx = m.nx;
+    s.ny = m.ny;
+    s.origin_x_m = m.origin_x;
+    s.origin_y_m = m.origin_y;
+    s.residual_yaw_rad = m.residual_yaw;
+    s.mean_z_m = m.mean_z;
+    s.variance_z_m2 = m.variance_z;
+    s.count = m.count;
+    return s;
+}
+
+struct Box
+{
+    double x0, y0, x1, y1, h;
+};
+
+int compare(const std::string& path, const std::string& channel, double flat, const std::vector<Box>& boxes,
+            double obstacle_height, bool all)
+{
+    lcm::LogFile log(path, "r");
+    if (!log.good()) {
+        std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", path.c_str());
+        return 2;
+    }
+    auto truth = [&](double x, double y) {
+        double z = flat;
+        for (const Box& b : boxes)
+            if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) z = std::max(z, b.h);
+        return z;
+    };
+    terrain_map_t m;
+    std::vector<uint8_t> last;
+    int maps = 0;
+    auto report = [&](const terrain_map_t& map) {
+        const MapMetrics r = evaluate(to_snapshot(map), truth, obstacle_height);
+        std::printf("{\"utime\": %lld, \"known\": %d, \"coverage\": %.4f, \"bias_m\": %.5f, \"rmse_m\": %.5f, "
+                    "\"mean_cell_variance_m2\": %.6f, \"obstacle_cells\": %d, \"obstacles_detected\": %d, "
+                    "\"false_obstacles\": %d}\n",
+                    static_cast<long long>(map.utime), r.known, r.coverage, r.bias_m, r.rmse_m,
+                    r.mean_cell_variance_m2, r.obstacle_cells, r.obstacles_detected, r.false_obstacles);
+    };
+    while (const lcm::LogEvent* ev = log.readNextEvent()) {
+        if (ev->channel != channel) continue;
+        if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) continue;
+        ++maps;
+        if (all) report(m);
+        const auto* p = static_cast<const uint8_t*>(ev->data);
+        last.assign(p, p + ev->datalen);
+    }
+    if (maps == 0) {
+        std::fprintf(stderr, "ugv-eval: no map on %s in %s\n", channel.c_str(), path.c_str());
+        return 1;
+    }
+    if (!all) {
+        m.decode(last.data(), 0, static_cast<int>(last.size()));
+        report(m);
+    }
+    return 0;
+}
+
+void study_table(const FloorStudyOptions& o, bool with_report)
+{
+    // The report's Tables 3 and 4 (z in m; its sigma^2 column is labelled "mm").
+    struct Reported
+    {
+        const char* name;
+        double classical_z, classical_var, weighted_z, weighted_var;
+    };
+    const Reported reported[] = {{"no IMU", 0.0060, 0.035, 0.0055, 0.029},
+                                 {"3DM-G static", 0.0015, 0.038, 0.0015, 0.031},
+                                 {"3DM-G", -0.211, 25.7, -0.182, 18.7},
+                                 {"3DM-GX1", -0.077, 3.9, -0.068, 2.9}};
+    std::printf("\nFlat floor, laser at %.2f m, lines every %.2f m from %.1f to %.1f m, %d nod(s), %.1f m/s, "
+                "%d trial(s), seed %llu%s\n",
+                o.laser_height_m, o.line_spacing_m, o.first_line_m, o.last_line_m, o.nods, o.speed_mps, o.trials,
+                static_cast<unsigned long long>(o.seed), o.spread ? ", spreading on" : "");
+    std::printf("%-13s %-12s | %10s %9s %10s %12s %8s | %9s %9s\n", "IMU", "statistics", "mean z (m)", "+/- se",
+                "rmse z (m)", "cell var(m2)", "coverage", "report z", "report s2");
+    for (const FloorStudyCase& c : report_cases()) {
+        const Reported* rep = nullptr;
+        for (const Reported& r : reported)
+            if (with_report && c.name == r.name) rep = &r;
+        FloorStudyResult cl = run_floor_study(c, StatisticsKind::classical, o);
+        FloorStudyResult vw = run_floor_study(c, StatisticsKind::variance_weighted, o);
+        for (const FloorStudyResult* r : {&cl, &vw}) {
+            const bool classical = r->statistics == StatisticsKind::classical;
+            std::printf("%-13s %-12s | %10.5f %9.5f %10.5f %12.6f %8.3f | %9.4f %9.3f\n", c.name.c_str(),
+                        classical ? "classical" : "variance-wt", r->metrics.bias_m, r->bias_standard_error_m,
+                        r->metrics.rmse_m, r->metrics.mean_cell_variance_m2, r->metrics.coverage,
+                        rep ? (classical ? rep->classical_z : rep->weighted_z) : NAN,
+                        rep ? (classical ? rep->classical_var : rep->weighted_var) : NAN);
+        }
+        const double rmse_gain = 1.0 - vw.metrics.rmse_m / std::max(1e-12, cl.metrics.rmse_m);
+        const double var_gain =
+            1.0 - vw.metrics.mean_cell_variance_m2 / std::max(1e-15, cl.metrics.mean_cell_variance_m2);
+        std::printf("%-13s variance-weighted vs classical: rmse %+.1f%%, cell variance %+.0f%%", c.name.c_str(),
+                    -100.0 * rmse_gain, -100.0 * var_gain);
+        if (rep)
+            std::printf(" (report: |mean z| %+.0f%%, s2 %+.0f%%)",
+                        -100.0 * (1.0 - std::abs(rep->weighted_z) / std::abs(rep->classical_z)),
+                        -100.0 * (1.0 - rep->weighted_var / rep->classical_var));
+        std::printf("\n");
+    }
+}
+
+int floor_study(FloorStudyOptions o)
+{
+    study_table(o, true);
+    // The report's point: on a moving vehicle the same patch is scanned from several ranges.
+    o.speed_mps = 1.0;
+    o.nods = 3;
+    study_table(o, false);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"ugv-eval: terrain maps against ground truth"};
+    app.set_version_flag("--version", std::string("ugv-eval ") + UGV_VERSION);
+    app.require_subcommand(1);
+    auto* cmp = app.add_subcommand("compare", "the maps of a log against a height field");
+    std::string log_path, channel = "TERRAIN_MAP";
+    double flat = 0.0, obstacle_height = 0.2;
+    std::vector<std::string> box_args;
+    bool all = false;
+    cmp->add_option("log", log_path, "LCM log with terrain_map_t")->required()->check(CLI::ExistingFile);
+    cmp->add_option("--channel", channel, "channel of the maps");
+    cmp->add_option("--flat", flat, "height of the ground (m, ENU up)");
+    cmp->add_option("--box", box_args, "an obstacle: X0,Y0,X1,Y1,H (m, ENU)");
+    cmp->add_option("--obstacle-height", obstacle_height, "a cell above this is an obstacle (m)");
+    cmp->add_flag("--all", all, "every map, not only the last");
+
+    auto* study = app.add_subcommand("floor-study", "Tables 3 and 4 of the report on a simulated flat floor");
+    FloorStudyOptions o;
+    study->add_option("--trials", o.trials, "trials averaged")->check(CLI::Range(1, 1000));
+    study->add_option("--seed", o.seed, "random seed");
+    study->add_flag("--spread", o.spread, "spread points whose sigma exceeds the grid (section 3.5)");
+    CLI11_PARSE(app, argc, argv);
+
+    if (*cmp) {
+        std::vector<Box> boxes;
+        for (const std::string& s : box_args) {
+            Box b{};
+            if (std::sscanf(s.c_str(), "%lf,%lf,%lf,%lf,%lf", &b.x0, &b.y0, &b.x1, &b.y1, &b.h) != 5) {
+                std::fprintf(stderr, "ugv-eval: --box %s: expected X0,Y0,X1,Y1,H\n", s.c_str());
+                return 2;
+            }
+            boxes.push_back(b);
+        }
+        return compare(log_path, channel, flat, boxes, obstacle_height, all);
+    }
+    return floor_study(o);
+}
