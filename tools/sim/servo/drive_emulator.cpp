@@ -382,7 +382,7 @@ void DriveEmulator::advance(int64_t now_us)
         const int64_t hb_ms = od_.get(0x1017, 0);
         if (hb_ms > 0 && now_us_ >= next_heartbeat_us_) {
             send(co::encode_heartbeat(node_, nmt_));
-            next_heartbeat_us_ = now_us_ + hb_ms * 1000;
+            next_heartbeat_us_ = next_period(next_heartbeat_us_, hb_ms * 1000);
         }
         if (nmt_ == co::NmtState::operational) {
             for (int n = 0; n < 4; ++n) {
@@ -392,7 +392,7 @@ void DriveEmulator::advance(int64_t now_us)
                 const int64_t timer_ms = od_.get(comm, 5);
                 if ((type == 0xFE || type == 0xFF) && timer_ms > 0 && now_us_ >= tpdo_next_us_[n]) {
                     send_tpdo(n);
-                    tpdo_next_us_[n] = now_us_ + timer_ms * 1000;
+                    tpdo_next_us_[n] = next_period(tpdo_next_us_[n], timer_ms * 1000);
                 }
             }
         }

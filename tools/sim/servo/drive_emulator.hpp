@@ -76,6 +76,14 @@ private:
     uint16_t statusword_ = 0;
     int64_t now_us_ = 0;
     int64_t state_since_us_ = 0;
+    // The next due time of a periodic timer: the last due time plus the period (a drive's
+    // timers keep their cadence; counting from the moment the loop noticed would make the rate
+    // sag by the poll latency), or now plus the period after a stall longer than a period.
+    int64_t next_period(int64_t due_us, int64_t period_us) const
+    {
+        const int64_t next = due_us + period_us;
+        return next > now_us_ ? next : now_us_ + period_us;
+    }
     int64_t next_heartbeat_us_ = 0;
     int64_t tpdo_next_us_[4] = {0, 0, 0, 0};
     int sync_count_[4] = {0, 0, 0, 0};
