@@ -3,22 +3,24 @@
 #include <spdlog/spdlog.h>
 
 #include "scan_message.hpp"
+#include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 
 namespace ugv::lms_daemon {
 
 namespace lms = ugv::sick_lms2xx;
 
-DeviceThread::DeviceThread(daemon::Daemon& d, const LmsConfig& config, LmsOutbox& outbox)
+DeviceThread::DeviceThread(daemon::Daemon& d, const LmsConfig& config)
     : d_(d),
       config_(config),
-      outbox_(outbox),
+      published_(d.counters()["published"]),
+      publish_failures_(d.counters()["publish_failures"]),
       session_(port_, config.session,
                lms::SessionCallbacks{
                    .on_scan =
                        [this](const lms::StampedScan& s) {
                            d_.mark_alive();
-                           outbox_.push(to_message(s, config_.sensor_id, scan_seq_++));
+                           if (publish(config_.channel, to_message(s, config_.sensor_id, scan_seq_++))) ++published_;
                        },
                    .on_state = [this](lms::SessionState s, const std::string& why) { on_state(s, why); },
                    .on_bytes = config.publish_raw
@@ -99,7 +101,15 @@ void DeviceThread::on_bytes(const uint8_t* data, std::size_t n, int64_t utime, b
     m.direction = from_device ? ugv::raw_bytes_t::DIRECTION_FROM_DEVICE : ugv::raw_bytes_t::DIRECTION_TO_DEVICE;
     m.nbytes = static_cast<int32_t>(n);
     m.data.assign(data, data + n);
-    outbox_.push(std::move(m));
+    publish(config_.raw_channel, m);
+}
+
+template <typename M>
+bool DeviceThread::publish(const std::string& channel, const M& m)
+{
+    if (bus::publish(d_.out(), channel, m)) return true;
+    ++publish_failures_;
+    return false;
 }
 
 void DeviceThread::publish_counters()

@@ -9,7 +9,6 @@
 #include <ugv/raw_bytes_t.hpp>
 
 #include "lms_config.hpp"
-#include "outbox.hpp"
 #include "ugv/daemon/daemon.hpp"
 #include "ugv/io/serial_port.hpp"
 #include "ugv/runtime/rate_limited_log.hpp"
@@ -17,12 +16,10 @@
 
 namespace ugv::lms_daemon {
 
-using LmsOutbox = Outbox<ugv::laser_scan_t, ugv::raw_bytes_t>;
-
 class DeviceThread
 {
 public:
-    DeviceThread(daemon::Daemon& d, const LmsConfig& config, LmsOutbox& outbox);
+    DeviceThread(daemon::Daemon& d, const LmsConfig& config);
     ~DeviceThread();
     void start();
     void join();
@@ -36,10 +33,15 @@ private:
     bool reopen();
     void on_state(sick_lms2xx::SessionState s, const std::string& why);
     void on_bytes(const uint8_t* data, std::size_t n, int64_t utime, bool from_device);
+    // Publishes from this thread (LCM's publish is thread-safe; out() lives as long as the
+    // Daemon): no hop through the main loop between the last byte and the bus.
+    template <typename M>
+    bool publish(const std::string& channel, const M& m);
 
     daemon::Daemon& d_;
     const LmsConfig& config_;
-    LmsOutbox& outbox_;
+    std::atomic<int64_t>& published_;  // scans
+    std::atomic<int64_t>& publish_failures_;
     io::SerialPort port_;
     sick_lms2xx::Session session_;
     runtime::RateLimitedLog log_;

@@ -1,11 +1,10 @@
 // ugv-lms: one SICK LMS 2xx over RS-422 -> laser_scan_t on LMS_SCAN (and raw_bytes_t on
-// RAW_LMS when asked). config -> the sick_lms2xx session on a device thread -> outbox -> bus
-// on the main thread. Keys, counters and failure modes: docs/lms.md.
+// RAW_LMS when asked). config -> the sick_lms2xx session on a device thread, which publishes;
+// the main thread runs status, systemd and signals. Keys, counters and failure modes: docs/lms.md.
 #include <spdlog/spdlog.h>
 
 #include "device_thread.hpp"
 #include "lms_config.hpp"
-#include "ugv/bus/typed.hpp"
 #include "ugv/daemon/daemon.hpp"
 
 int main(int argc, char** argv)
@@ -20,23 +19,7 @@ int main(int argc, char** argv)
     for (const char* name : {"scans", "crc_errors", "resyncs", "naks", "timeouts", "reconnects", "bytes_in",
                              "bad_scans", "published", "publish_failures"})
         d.counters()[name];
-    auto& published = d.counters()["published"];
-    auto& publish_failures = d.counters()["publish_failures"];
-
-    LmsOutbox outbox;
-    d.add_fd(outbox.fd(), [&] {
-        auto [scans, raws] = outbox.take();
-        for (const auto& m : raws)
-            if (!ugv::bus::publish(d.out(), config.raw_channel, m)) ++publish_failures;
-        for (const auto& m : scans) {
-            if (ugv::bus::publish(d.out(), config.channel, m))
-                ++published;
-            else
-                ++publish_failures;
-        }
-    });
-
-    DeviceThread device(d, config, outbox);
+    DeviceThread device(d, config);
     int ticks = 0;
     d.add_timer(200'000, [&] {
         device.publish_counters();
