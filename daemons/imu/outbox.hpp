@@ -1,6 +1,6 @@
-// Messages from the device thread to the main thread, which publishes them. Daemon::run()
-// gives up its bus when it returns, so a device thread must never publish on its own: it
-// would race the shutdown. Here it only queues and wakes the main loop through an eventfd.
+// Messages from the device thread to the main thread, which publishes them; push() queues and
+// wakes the main loop through an eventfd. (Daemon::out() would also allow publishing from the
+// device thread, as ugv-lms does; this keeps every bus call on one thread.)
 #pragma once
 
 #include <sys/eventfd.h>
