@@ -1,57 +1,18 @@
 // The daemon plumbing seen from outside, as systemd and an operator see it.
 #include <catch2/catch.hpp>
 
-#include <poll.h>
-#include <sys/socket.h>
-#include <sys/un.h>
 #include <unistd.h>
 
 #include "ugv/bus/typed.hpp"
 #include "ugv/daemon_status_t.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/raw_bytes_t.hpp"
+#include "ugv_test/notify_socket.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
 
 namespace {
-
-class NotifySocket
-{
-public:
-    explicit NotifySocket(const std::string& path) : path_(path)
-    {
-        fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-        sockaddr_un a{};
-        a.sun_family = AF_UNIX;
-        std::snprintf(a.sun_path, sizeof a.sun_path, "%s", path.c_str());
-        REQUIRE(::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0);
-    }
-    ~NotifySocket() { ::close(fd_); }
-    std::string env() const { return "NOTIFY_SOCKET=" + path_; }
-    // Waits for a datagram containing what; returns false on timeout.
-    bool wait_for(const std::string& what, double timeout_s)
-    {
-        const int64_t end = io::monotonic_us() + static_cast<int64_t>(timeout_s * 1e6);
-        while (io::monotonic_us() < end) {
-            pollfd p{fd_, POLLIN, 0};
-            if (::poll(&p, 1, 50) <= 0) continue;
-            char buf[512];
-            const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
-            if (n <= 0) continue;
-            const std::string msg(buf, static_cast<std::size_t>(n));
-            seen_ += msg + "\n";
-            if (msg.find(what) != std::string::npos) return true;
-        }
-        return false;
-    }
-    const std::string& seen() const { return seen_; }
-
-private:
-    std::string path_;
-    int fd_ = -1;
-    std::string seen_;
-};
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
@@ -60,7 +21,7 @@ std::string first_line(const std::string& s) { return s.substr(0, s.find('\n'));
 TEST_CASE("daemon: READY, WATCHDOG while healthy, status on LCM, and STOPPING with a clean exit on SIGTERM")
 {
     test::TempDir dir;
-    NotifySocket notify(dir / "notify");
+    test::NotifySocket notify(dir / "notify");
     const std::string url = test::lcm_url(7611);
     auto listen = bus::open_live(url);
     std::vector<daemon_status_t> status;
@@ -93,7 +54,7 @@ TEST_CASE("daemon: READY, WATCHDOG while healthy, status on LCM, and STOPPING wi
 TEST_CASE("daemon: no WATCHDOG ping while unhealthy, so systemd would restart it")
 {
     test::TempDir dir;
-    NotifySocket notify(dir / "notify");
+    test::NotifySocket notify(dir / "notify");
     test::write_file(dir / "d.toml", "healthy = false\n");
     test::Process d({test::bin("ugv-test-daemon"), "--config", dir / "d.toml", "--lcm-url", test::lcm_url(7612)},
                     dir / "out", dir / "err", {notify.env(), "WATCHDOG_USEC=200000"});

@@ -1,45 +1,24 @@
 // The sd_notify protocol observed on a unix datagram socket the test binds as NOTIFY_SOCKET.
 #include <catch2/catch.hpp>
 
-#include <poll.h>
-#include <sys/socket.h>
-#include <sys/un.h>
 #include <unistd.h>
 
 #include <cstdlib>
 
 #include "ugv/runtime/notify.hpp"
+#include "ugv_test/notify_socket.hpp"
 #include "ugv_test/process.hpp"
 
 namespace {
-class NotifySocket
+// The shared socket, with NOTIFY_SOCKET pointing at it for this process while it lives.
+class NotifySocket : public ugv::test::NotifySocket
 {
 public:
-    explicit NotifySocket(const std::string& path)
+    explicit NotifySocket(const std::string& path) : ugv::test::NotifySocket(path)
     {
-        fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-        sockaddr_un a{};
-        a.sun_family = AF_UNIX;
-        std::snprintf(a.sun_path, sizeof a.sun_path, "%s", path.c_str());
-        REQUIRE(::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0);
         setenv("NOTIFY_SOCKET", path.c_str(), 1);
     }
-    ~NotifySocket()
-    {
-        ::close(fd_);
-        unsetenv("NOTIFY_SOCKET");
-    }
-    std::string next(int timeout_ms = 1000)
-    {
-        pollfd p{fd_, POLLIN, 0};
-        if (::poll(&p, 1, timeout_ms) <= 0) return "";
-        char buf[512];
-        const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
-        return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : "";
-    }
-
-private:
-    int fd_ = -1;
+    ~NotifySocket() { unsetenv("NOTIFY_SOCKET"); }
 };
 }  // namespace
 
