@@ -6,17 +6,11 @@
 #include <list>
 
 #include "handler_guard.hpp"
+#include "ugv/io/clock.hpp"
 #include "ugv/bus/bus.hpp"
 
 namespace ugv::bus {
 namespace {
-
-int64_t wall_utime()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return static_cast<int64_t>(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
-}
 
 class LiveBus final : public Bus
 {
@@ -56,7 +50,7 @@ public:
     }
 
     int fd() const override { return lcm_get_fileno(lcm_); }
-    int64_t now_utime() const override { return wall_utime(); }
+    int64_t now_utime() const override { return io::now_utime(); }
     std::string describe() const override { return url_; }
 
 private:
