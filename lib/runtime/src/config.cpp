@@ -24,7 +24,6 @@ struct Config::Impl
     std::set<std::string> known;
     std::shared_ptr<toml::table> effective;  // the root's; sections write into a sub-table
     toml::table* effective_here = nullptr;
-    std::vector<Config*> children;           // not owned; sections are checked by their own finish()
 };
 
 namespace {
