@@ -239,6 +239,30 @@ Config Config::section(const std::string& name)
     return child;
 }
 
+std::vector<Config> Config::tables(const std::string& name)
+{
+    impl_->known.insert(name);
+    const toml::node* n = impl_->table.get(name);
+    if (!n) return {};
+    const toml::array* array = n->as_array();
+    if (!array || !array->is_array_of_tables())
+        fail(name, "must be an array of tables ([[" + name + "]]), not " + type_name(*n));
+    auto [it, inserted] = impl_->effective_here->insert_or_assign(name, toml::array{});
+    toml::array& effective = *it->second.as_array();
+    for (std::size_t i = 0; i < array->size(); ++i) effective.push_back(toml::table{});
+    std::vector<Config> out;
+    for (std::size_t i = 0; i < array->size(); ++i) {
+        auto impl = std::make_unique<Impl>();
+        impl->file = impl_->file;
+        impl->prefix = impl_->prefix + name + "[" + std::to_string(i) + "].";
+        impl->table = *array->get(i)->as_table();
+        impl->effective = impl_->effective;
+        impl->effective_here = effective.get(i)->as_table();
+        out.push_back(Config(std::move(impl)));
+    }
+    return out;
+}
+
 void Config::finish()
 {
     for (auto&& [k, node] : impl_->table) {

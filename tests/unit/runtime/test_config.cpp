@@ -92,3 +92,35 @@ TEST_CASE("a daemon's own check of a value gives the same one-line form")
     CHECK_THROWS_WITH(c.fail("max_tilt_deg", "must be greater than min_tilt_deg"),
                       "servo.toml: max_tilt_deg: must be greater than min_tilt_deg");
 }
+
+TEST_CASE("arrays of tables read element by element, errors naming the element")
+{
+    auto message_of = [](auto&& f) -> std::string {
+        try {
+            f();
+        } catch (const ConfigError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string text = "[[box]]\nx = 1.0\nh = 0.5\n[[box]]\nx = 2.0\n";
+    Config c = Config::parse(text, "scene.toml");
+    std::vector<Config> boxes = c.tables("box");
+    REQUIRE(boxes.size() == 2);
+    CHECK(boxes[0].get_double("x", 0, -10, 10) == 1.0);
+    CHECK(boxes[0].get_double("h", 1, 0, 10) == 0.5);
+    CHECK(boxes[1].get_double("x", 0, -10, 10) == 2.0);
+    CHECK(boxes[1].get_double("h", 1, 0, 10) == 1.0);  // default
+    for (Config& b : boxes) b.finish();
+    c.finish();
+    CHECK(c.effective_toml().find("[[box]]") != std::string::npos);
+    CHECK(Config::parse("", "s.toml").tables("box").empty());
+
+    Config bad = Config::parse("[[box]]\nx = 20.0\n[[box]]\nx = 1.0\nwidth = 3\n", "s.toml");
+    std::vector<Config> b = bad.tables("box");
+    CHECK(message_of([&] { b[0].get_double("x", 0, -10, 10); }) == "s.toml: box[0].x: 20 is out of range [-10, 10]");
+    b[1].get_double("x", 0, -10, 10);
+    CHECK(message_of([&] { b[1].finish(); }) == "s.toml: box[1].width: unknown key");
+    CHECK(message_of([&] { Config::parse("box = 3\n", "s.toml").tables("box"); }) ==
+          "s.toml: box: must be an array of tables ([[box]]), not an integer");
+}

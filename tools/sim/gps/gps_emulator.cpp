@@ -120,6 +120,12 @@ uint32_t GpsEmulator::position_type_at(double elapsed_s) const
 
 void GpsEmulator::truth(int64_t utime, double& lat, double& lon) const
 {
+    if (config_.trajectory) {
+        const AntennaTruth t = config_.trajectory(utime);
+        lat = t.latitude_deg;
+        lon = t.longitude_deg;
+        return;
+    }
     const double d = config_.speed_mps * static_cast<double>(utime - start_utime_) * 1e-6;
     const double h = config_.heading_deg * kDegToRad;
     lat = config_.latitude_deg + d * std::cos(h) / kEarthRadiusM / kDegToRad;
@@ -202,7 +208,7 @@ nv::Position GpsEmulator::position_at(int64_t utime)
     const double up = config_.noise_scale > 0 ? noise(rng_) * 1.5 : 0.0;
     p.latitude_deg = lat + north / kEarthRadiusM / kDegToRad;
     p.longitude_deg = lon + east / (kEarthRadiusM * std::cos(lat * kDegToRad)) / kDegToRad;
-    p.height_msl_m = config_.height_msl_m + up;
+    p.height_msl_m = (config_.trajectory ? config_.trajectory(utime).height_msl_m : config_.height_msl_m) + up;
     p.undulation_m = config_.undulation_m;
     p.datum_id = 61;
     p.sigma_latitude_m = sigma;
@@ -235,6 +241,13 @@ nv::Velocity GpsEmulator::velocity_at(int64_t utime)
     v.horizontal_speed_mps = config_.speed_mps;
     v.track_deg = config_.heading_deg;
     v.vertical_speed_mps = 0.0;
+    if (config_.trajectory) {
+        // The Doppler velocity is the average over the last interval: the truth latency ago.
+        const AntennaTruth t = config_.trajectory(utime - std::llround(v.latency_s * 1e6));
+        v.horizontal_speed_mps = t.horizontal_speed_mps;
+        v.track_deg = t.track_deg;
+        v.vertical_speed_mps = t.vertical_speed_mps;
+    }
     return v;
 }
 

@@ -191,8 +191,10 @@ std::vector<uint8_t> Gx1Emulator::build_data_reply(uint8_t command, double t_s, 
     const Eigen::Matrix3d r_ned_frd = gx1::rotation_from_euler(m.roll_rad, m.pitch_rad, m.yaw_rad);
     const double gyro = eeprom(gx1::eeprom::gyro_gain_scale), accel = eeprom(gx1::eeprom::accel_gain_scale),
                  mag = eeprom(gx1::eeprom::mag_gain_scale);
-    // Specific force: the reaction to gravity, "up" = -down in NED, in sensor axes, in g.
-    const Eigen::Vector3d f_g = r_ned_frd.transpose() * Eigen::Vector3d(0, 0, -1.0);
+    // Specific force: the acceleration minus gravity (the reaction to gravity is "up" =
+    // -down in NED), in sensor axes, in g.
+    const Eigen::Vector3d f_g =
+        r_ned_frd.transpose() * (m.accel_ned_mps2 / gx1::standard_gravity_mps2 - Eigen::Vector3d(0, 0, 1.0));
     const Eigen::Vector3d b_gauss = r_ned_frd.transpose() * config_.mag_field_ned_gauss;
 
     std::vector<uint16_t> words;

@@ -220,10 +220,27 @@ void LmsDevice::handle(const lms::Telegram& t, int64_t now_us, int host_baud, By
     nak(host_baud, now_us, out);
 }
 
-Bytes LmsDevice::make_scan()
+Bytes LmsDevice::make_scan(int64_t now_us)
 {
     const int n = lms::beams_per_scan(angle_deg_, resolution_cdeg_);
-    if (beam_ranges_.size() != static_cast<std::size_t>(n)) {
+    if (options_.beam_scene) {
+        beam_ranges_.resize(static_cast<std::size_t>(n));
+        const bool indexed = (config_[lms::DeviceConfig::availability_at] & lms::kAvailabilityScanIndex) != 0;
+        const std::size_t telegram_bytes = lms::encode_scan_telegram(std::vector<uint16_t>(beam_ranges_.size(), 0),
+                                                                     units(), 0, indexed ? 0 : -1, kReplyStatus)
+                                               .size();
+        // A pty has no line rate: the whole telegram reaches the host now, which the host's
+        // model reads as its last byte arriving now, so the scan ended one transmission time
+        // (at the device's rate) before now.
+        const double duration_us = lms::scan_period_s(resolution_cdeg_) * 1e6;
+        const double tx_us = static_cast<double>(telegram_bytes) * 10.0 * 1e6 / baud_;
+        const double first_us = static_cast<double>(now_us) - tx_us - duration_us;
+        for (int i = 0; i < n; ++i) {
+            const double deg = -angle_deg_ / 2.0 + i * resolution_cdeg_ / 100.0;
+            const auto t = static_cast<int64_t>(std::llround(first_us + duration_us * i / std::max(1, n - 1)));
+            beam_ranges_[static_cast<std::size_t>(i)] = options_.beam_scene(deg * kPi / 180.0, t);
+        }
+    } else if (beam_ranges_.size() != static_cast<std::size_t>(n)) {
         beam_ranges_.resize(static_cast<std::size_t>(n));
         for (int i = 0; i < n; ++i) {
             const double deg = -angle_deg_ / 2.0 + i * resolution_cdeg_ / 100.0;
@@ -249,7 +266,7 @@ void LmsDevice::tick(int64_t now_us, int host_baud, Bytes& out)
     if (line_free_us_ > now_us) {
         ++stats_.scans_skipped;  // the previous scan is still on the wire
     } else {
-        Bytes scan = make_scan();
+        Bytes scan = make_scan(now_us);
         std::uniform_real_distribution<double> u(0.0, 1.0);
         if (options_.faults.bitflip_probability > 0.0 && u(rng_) < options_.faults.bitflip_probability) {
             std::uniform_int_distribution<std::size_t> pos(0, scan.size() - 1);

@@ -37,9 +37,15 @@ using Scene = std::function<double(double angle_rad)>;
 // A flat floor seen from height_m, the scan plane pitched down by pitch_rad.
 Scene flat_floor_scene(double height_m, double pitch_rad);
 
+// A scene that moves (ugv-sim world): the range along the beam at angle_rad measured at
+// beam_utime. Asked for every beam of every scan, in beam order; the beam times follow the
+// model of docs/lms.md (first beam = last byte sent - transmission time - scan duration).
+using BeamScene = std::function<double(double angle_rad, int64_t beam_utime)>;
+
 struct DeviceOptions
 {
     Scene scene;
+    BeamScene beam_scene;  // when set, used instead of scene
     Faults faults;
     uint32_t seed = 1;
     int initial_baud = 9600;
@@ -87,7 +93,7 @@ private:
     // Puts bytes on the line: as they are when the host's rate matches, garbage otherwise.
     void send(std::vector<uint8_t> bytes, int host_baud, int64_t now_us, std::vector<uint8_t>& out, bool is_telegram);
     bool silent(int64_t now_us) const;
-    std::vector<uint8_t> make_scan();
+    std::vector<uint8_t> make_scan(int64_t now_us);
 
     DeviceOptions options_;
     sick_lms2xx::Decoder decoder_{sick_lms2xx::kHostAddress};

@@ -9,6 +9,7 @@
 //   auto baud = cfg.get_int("baud", 500000, {9600, 19200, 38400, 500000});
 //   auto height = cfg.get_double("sensor_height_m", 0.87, 0.0, 5.0);
 //   auto sensor = cfg.section("mount");   // a [mount] table, same rules inside
+//   for (auto& box : cfg.tables("box")) { ...; box.finish(); }   // [[box]] tables
 //   cfg.finish();
 #pragma once
 
@@ -66,6 +67,10 @@ public:
     bool has(const std::string& key) const;
     // A sub-table [name]; its keys are reported as "name.key". Missing table = all defaults.
     Config section(const std::string& name);
+    // An array of tables ([[name]] ... [[name]]), in file order; keys inside are reported as
+    // "name[i].key". Missing = empty. Call finish() on each element: it checks that element's
+    // keys (the parent's finish() leaves them to it).
+    std::vector<Config> tables(const std::string& name);
     // Throws for a value found invalid by the caller, in the same one-line form.
     [[noreturn]] void fail(const std::string& key, const std::string& why) const;
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -25,6 +26,17 @@ struct ScriptStep
     uint32_t position_type = 16;
 };
 
+// The antenna's true motion at a time (ugv-sim world): position and Doppler velocity.
+struct AntennaTruth
+{
+    double latitude_deg = 0, longitude_deg = 0;
+    double height_msl_m = 0;
+    double horizontal_speed_mps = 0;
+    double track_deg = 0;            // clockwise from true north
+    double vertical_speed_mps = 0;
+};
+using Trajectory = std::function<AntennaTruth(int64_t utime)>;
+
 struct EmulatorConfig
 {
     Protocol protocol = Protocol::novatel;
@@ -35,6 +47,7 @@ struct EmulatorConfig
     double undulation_m = -17.0;
     double speed_mps = 0.0;           // 0: stationary
     double heading_deg = 0.0;         // clockwise from north
+    Trajectory trajectory;            // when set, replaces the start point, speed and heading
     double noise_scale = 1.0;         // x the position type's sigma; 0 = exact
     uint32_t seed = 1;
     int leap_seconds = 18;

@@ -28,6 +28,7 @@ struct NedMotion
 {
     double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
     Eigen::Vector3d rate_frd_radps = Eigen::Vector3d::Zero();
+    Eigen::Vector3d accel_ned_mps2 = Eigen::Vector3d::Zero();  // kinematic acceleration (gravity apart)
 };
 using AttitudeFn = std::function<NedMotion(double t_s)>;
 

@@ -1,0 +1,86 @@
+// A simulation scenario: terrain, the vehicle's path, its sensors' mounts and noise, and
+// which devices to emulate. Read from TOML (ugv::runtime::Config: a bad value is the one
+// line `FILE: KEY: why`); default_scenario_toml() is the report's demonstration.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "ugv/nodscan/mount.hpp"
+#include "ugv/runtime/config.hpp"
+#include "ugv/simworld/terrain_spec.hpp"
+#include "ugv/simworld/vehicle_path.hpp"
+
+namespace ugv::simworld {
+
+struct VehicleSpec
+{
+    // The body frame's origin (the reference point) is the middle of the rear axle on the
+    // ground; the front axle is wheelbase_m ahead.
+    double wheelbase_m = 2.5;
+    double track_m = 1.6;
+};
+
+struct LaserSpec
+{
+    nodscan::MountGeometry mount{{0.0, 0.0, 0.87}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // as ugv-nodscan's [mount]
+    double range_noise_m = 0.01;   // 1-sigma
+};
+
+struct ServoSpec
+{
+    int node_id = 1;
+    double counts_per_rev = 4096;  // encoder resolution, as ugv-servo's keys of that name
+    double gear_ratio = 50;
+    double counts_per_rad() const;
+};
+
+struct GpsSpec
+{
+    std::string protocol = "novatel";          // novatel | nmea
+    std::string position_types = "NARROW_INT@0";  // the receiver's solution over time
+    double noise_scale = 1.0;                  // x the position type's sigma
+    Eigen::Vector3d antenna_m{0.0, 0.0, 1.8};  // body frame
+};
+
+struct ImuSpec
+{
+    double angle_sigma_deg = 0.7;   // dynamic attitude error, 1-sigma per sample
+    double rate_sigma_dps = 0.1;
+    double accel_sigma_mps2 = 0.02;
+    double declination_deg = 0.0;   // magnetic yaw = true yaw + this (the filter estimates it)
+};
+
+struct DeviceSet
+{
+    bool lms = true, servo = true, gps = true, imu = true;
+};
+
+struct Scenario
+{
+    std::string name = "default";
+    double datum_latitude_deg = 50.2706;   // world ENU origin
+    double datum_longitude_deg = -110.7389;
+    double datum_height_m = 750.0;         // ellipsoidal
+    double undulation_m = -17.0;           // geoid above ellipsoid, for the receiver's MSL height
+    TerrainSpec terrain;
+    double field_resolution_m = 0.05;
+    double field_margin_m = 30.0;          // the truth field covers the path plus this
+    PathSpec path;
+    double hold_s = 5.0;                   // standing still after the path before ending
+    VehicleSpec vehicle;
+    LaserSpec laser;
+    ServoSpec servo;
+    GpsSpec gps;
+    ImuSpec imu;
+    DeviceSet devices;
+};
+
+// Reads every key (defaults = the built-in defaults above); calls cfg.finish().
+Scenario parse_scenario(runtime::Config& cfg);
+// The report's demonstration (figures 16-19): drive forward at 3 m/s past a box and a
+// building wall, a left turn, and stop facing a wall.
+const char* default_scenario_toml();
+
+}  // namespace ugv::simworld

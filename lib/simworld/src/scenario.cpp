@@ -1,0 +1,285 @@
+#include "ugv/simworld/scenario.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ugv::simworld {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kHuge = 100000.0;  // m: a bound for coordinates that only catches typos
+
+Rect read_rect(runtime::Config& c)
+{
+    Rect r;
+    r.x0_m = c.get_double("x0", 0, -kHuge, kHuge);
+    r.y0_m = c.get_double("y0", 0, -kHuge, kHuge);
+    r.x1_m = c.get_double("x1", 1, -kHuge, kHuge);
+    r.y1_m = c.get_double("y1", 1, -kHuge, kHuge);
+    if (!(r.x1_m > r.x0_m)) c.fail("x1", "must be greater than x0");
+    if (!(r.y1_m > r.y0_m)) c.fail("y1", "must be greater than y0");
+    return r;
+}
+
+Eigen::Vector3d vec3(runtime::Config& c, const std::string& key, const Eigen::Vector3d& def, double bound)
+{
+    const std::vector<double> v = c.get_doubles(key, {def.x(), def.y(), def.z()}, 3, -bound, bound);
+    return {v[0], v[1], v[2]};
+}
+
+nodscan::Vec3 mount_vec(runtime::Config& c, const std::string& key, const nodscan::Vec3& def, double bound,
+                        double scale)
+{
+    const std::vector<double> v = c.get_doubles(key, {def[0] / scale, def[1] / scale, def[2] / scale}, 3, -bound, bound);
+    return {v[0] * scale, v[1] * scale, v[2] * scale};
+}
+
+void read_terrain(runtime::Config& root, Scenario& s)
+{
+    runtime::Config t = root.section("terrain");
+    s.terrain.ground_z_m = t.get_double("ground_z_m", 0.0, -1000, 1000);
+    s.terrain.roughness_m = t.get_double("roughness_m", 0.0, 0.0, 1.0);
+    s.terrain.roughness_wavelength_m = t.get_double("roughness_wavelength_m", 2.0, 0.1, 100.0);
+    s.terrain.seed = static_cast<uint32_t>(t.get_int("seed", 1, 0, 0xffffffffLL));
+    s.field_resolution_m = t.get_double("resolution_m", 0.05, 0.01, 1.0);
+    s.field_margin_m = t.get_double("margin_m", 30.0, 1.0, 500.0);
+    for (runtime::Config& b : root.tables("box")) {
+        s.terrain.boxes.push_back({read_rect(b), b.get_double("height_m", 0.5, 0.0, 100.0)});
+        b.finish();
+    }
+    for (runtime::Config& w : root.tables("wall")) {
+        const std::vector<double> from = w.get_doubles("from", {0, 0}, 2, -kHuge, kHuge);
+        const std::vector<double> to = w.get_doubles("to", {1, 0}, 2, -kHuge, kHuge);
+        s.terrain.walls.push_back({from[0], from[1], to[0], to[1], w.get_double("thickness_m", 0.3, 0.01, 10.0),
+                                   w.get_double("height_m", 3.0, 0.0, 100.0)});
+        w.finish();
+    }
+    for (runtime::Config& r : root.tables("ramp")) {
+        RampSpec ramp{read_rect(r), r.get_double("rise_m", 0.5, -10.0, 10.0), Direction::east};
+        const std::string dir = r.get_enum("rises_towards", "east", {"east", "west", "north", "south"});
+        ramp.rises_towards = dir == "east" ? Direction::east
+                             : dir == "west" ? Direction::west
+                             : dir == "north" ? Direction::north
+                                              : Direction::south;
+        s.terrain.ramps.push_back(ramp);
+        r.finish();
+    }
+    for (runtime::Config& d : root.tables("ditch")) {
+        s.terrain.ditches.push_back({read_rect(d), d.get_double("depth_m", 0.3, 0.0, 100.0)});
+        d.finish();
+    }
+}
+
+void read_path(runtime::Config& root, Scenario& s)
+{
+    runtime::Config p = root.section("path");
+    const std::vector<double> start = p.get_doubles("start", {0, 0}, 2, -kHuge, kHuge);
+    s.path.x0_m = start[0];
+    s.path.y0_m = start[1];
+    s.path.yaw0_rad = p.get_double("start_yaw_deg", 0.0, -360, 360) * kDegToRad;
+    s.path.accel_mps2 = p.get_double("accel_mps2", 1.0, 0.05, 10.0);
+    s.hold_s = p.get_double("hold_s", 5.0, 0.0, 3600.0);
+    for (runtime::Config& g : root.tables("segment")) {
+        PathSegment seg;
+        const std::string kind = g.get_enum("kind", "straight", {"straight", "arc", "stop"});
+        if (kind == "stop") {
+            seg.kind = PathSegment::Kind::stop;
+            seg.duration_s = g.get_double("duration_s", 1.0, 0.0, 3600.0);
+        } else {
+            seg.speed_mps = g.get_double("speed_mps", 3.0, 0.01, 3.0);
+            if (kind == "straight") {
+                seg.kind = PathSegment::Kind::straight;
+                seg.length_m = g.get_double("length_m", 10.0, 0.0, 100000.0);
+            } else {
+                seg.kind = PathSegment::Kind::arc;
+                seg.radius_m = g.get_double("radius_m", 10.0, 1.0, 100000.0);
+                seg.turn_rad = g.get_double("turn_deg", 90.0, -3600.0, 3600.0) * kDegToRad;
+            }
+        }
+        s.path.segments.push_back(seg);
+        g.finish();
+    }
+}
+
+void read_sensors(runtime::Config& root, Scenario& s)
+{
+    runtime::Config v = root.section("vehicle");
+    s.vehicle.wheelbase_m = v.get_double("wheelbase_m", 2.5, 0.5, 10.0);
+    s.vehicle.track_m = v.get_double("track_m", 1.6, 0.3, 5.0);
+
+    runtime::Config l = root.section("laser");
+    s.laser.mount.axis_xyz_m = mount_vec(l, "tilt_axis_xyz_m", {0.0, 0.0, 0.87}, 10, 1.0);
+    s.laser.mount.axis_rpy_rad = mount_vec(l, "tilt_axis_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    s.laser.mount.laser_xyz_m = mount_vec(l, "laser_xyz_m", {0, 0, 0}, 2, 1.0);
+    s.laser.mount.laser_rpy_rad = mount_vec(l, "laser_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    s.laser.range_noise_m = l.get_double("range_noise_m", 0.01, 0.0, 1.0);
+
+    runtime::Config sv = root.section("servo");
+    s.servo.node_id = static_cast<int>(sv.get_int("node_id", 1, 1, 127));
+    s.servo.counts_per_rev = sv.get_double("counts_per_rev", 4096, 1, 1e9);
+    s.servo.gear_ratio = sv.get_double("gear_ratio", 50, 0.001, 1e6);
+
+    runtime::Config g = root.section("gps");
+    s.gps.protocol = g.get_enum("protocol", "novatel", {"novatel", "nmea"});
+    s.gps.position_types = g.get_string("position_types", "NARROW_INT@0");
+    s.gps.noise_scale = g.get_double("noise_scale", 1.0, 0.0, 100.0);
+    s.gps.antenna_m = vec3(g, "antenna_m", {0.0, 0.0, 1.8}, 20);
+
+    runtime::Config i = root.section("imu");
+    s.imu.angle_sigma_deg = i.get_double("angle_sigma_deg", 0.7, 0.0, 30.0);
+    s.imu.rate_sigma_dps = i.get_double("rate_sigma_dps", 0.1, 0.0, 100.0);
+    s.imu.accel_sigma_mps2 = i.get_double("accel_sigma_mps2", 0.02, 0.0, 100.0);
+    s.imu.declination_deg = i.get_double("declination_deg", 0.0, -180, 180);
+
+    runtime::Config d = root.section("devices");
+    s.devices.lms = d.get_bool("lms", true);
+    s.devices.servo = d.get_bool("servo", true);
+    s.devices.gps = d.get_bool("gps", true);
+    s.devices.imu = d.get_bool("imu", true);
+}
+
+}  // namespace
+
+double ServoSpec::counts_per_rad() const
+{
+    return counts_per_rev * gear_ratio / (2.0 * 3.14159265358979323846);
+}
+
+Scenario parse_scenario(runtime::Config& cfg)
+{
+    Scenario s;
+    s.name = cfg.get_string("name", "unnamed");
+    runtime::Config datum = cfg.section("datum");
+    s.datum_latitude_deg = datum.get_double("lat", s.datum_latitude_deg, -90, 90);
+    s.datum_longitude_deg = datum.get_double("lon", s.datum_longitude_deg, -180, 180);
+    s.datum_height_m = datum.get_double("height", s.datum_height_m, -1000, 10000);
+    s.undulation_m = datum.get_double("undulation_m", s.undulation_m, -200, 200);
+    read_terrain(cfg, s);
+    read_path(cfg, s);
+    read_sensors(cfg, s);
+    cfg.finish();
+    return s;
+}
+
+const char* default_scenario_toml()
+{
+    return R"(# The report's demonstration (figures 16-19): stand while the stack starts, drive east at
+# 3 m/s past a box (right) and a building wall (right), turn left, stop facing a wall.
+name = "report-demo"
+
+[datum]
+lat = 50.2706
+lon = -110.7389
+height = 750.0
+undulation_m = -17.0
+
+[terrain]
+ground_z_m = 0.0
+roughness_m = 0.02
+roughness_wavelength_m = 1.5
+seed = 7
+resolution_m = 0.05
+margin_m = 30.0
+
+[[box]]        # the obstacle of figures 17 and 19, right of the path
+x0 = 22.0
+y0 = -3.5
+x1 = 23.0
+y1 = -2.5
+height_m = 0.6
+
+[[wall]]       # the building wall of figure 16, right of the path
+from = [32.0, -7.0]
+to = [56.0, -7.0]
+thickness_m = 0.3
+height_m = 3.0
+
+[[wall]]       # the wall the vehicle stops in front of (figure 18)
+from = [47.0, 31.0]
+to = [63.0, 31.0]
+thickness_m = 0.3
+height_m = 3.0
+
+[[ramp]]
+x0 = 14.0
+y0 = 3.0
+x1 = 18.0
+y1 = 6.0
+rise_m = 0.4
+rises_towards = "east"
+
+[[ditch]]
+x0 = 26.0
+y0 = 2.5
+x1 = 28.0
+y1 = 5.0
+depth_m = 0.3
+
+[path]
+start = [0.0, 0.0]
+start_yaw_deg = 0.0      # east
+accel_mps2 = 1.0
+hold_s = 5.0
+
+[[segment]]              # the stack starts, the laser handshakes, the GPS fixes
+kind = "stop"
+duration_s = 10.0
+
+[[segment]]
+kind = "straight"
+length_m = 45.0
+speed_mps = 3.0
+
+[[segment]]              # left turn (figure 19)
+kind = "arc"
+radius_m = 10.0
+turn_deg = 90.0
+speed_mps = 2.0
+
+[[segment]]
+kind = "straight"
+length_m = 10.0
+speed_mps = 2.0
+
+[[segment]]
+kind = "stop"
+duration_s = 3.0
+
+[vehicle]
+wheelbase_m = 2.5
+track_m = 1.6
+
+[laser]
+tilt_axis_xyz_m = [0.0, 0.0, 0.87]
+tilt_axis_rpy_deg = [0.0, 0.0, 0.0]
+laser_xyz_m = [0.0, 0.0, 0.0]
+laser_rpy_deg = [0.0, 0.0, 0.0]
+range_noise_m = 0.01
+
+[servo]
+node_id = 1
+counts_per_rev = 4096
+gear_ratio = 50
+
+[gps]
+protocol = "novatel"
+position_types = "NARROW_INT@0"
+noise_scale = 1.0
+antenna_m = [0.0, 0.0, 1.8]
+
+[imu]
+angle_sigma_deg = 0.7
+rate_sigma_dps = 0.1
+accel_sigma_mps2 = 0.02
+declination_deg = 0.0
+
+[devices]
+lms = true
+servo = true
+gps = true
+imu = true
+)";
+}
+
+}  // namespace ugv::simworld

@@ -1,0 +1,199 @@
+#include "device_ports.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+
+#include "ugv/geometry/rotation.hpp"
+
+namespace ugv::sim::world {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / kPi;
+
+}  // namespace
+
+std::size_t DevicePort::read_input(std::vector<uint8_t>& into)
+{
+    into.resize(4096);
+    const ssize_t n = ::read(pty_.master_fd(), into.data(), into.size());
+    into.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    return into.size();
+}
+
+std::size_t DevicePort::write_output(const uint8_t* data, std::size_t n)
+{
+    std::size_t done = 0;
+    while (done < n) {
+        const ssize_t w = ::write(pty_.master_fd(), data + done, n - done);
+        if (w > 0) {
+            done += static_cast<std::size_t>(w);
+        } else if (w < 0 && errno == EINTR) {
+            continue;
+        } else {
+            break;  // nobody reads: a real line would lose these bytes too
+        }
+    }
+    return n - done;
+}
+
+void TiltHistory::add(int64_t utime, double tilt_rad)
+{
+    samples_.emplace_back(utime, tilt_rad);
+    while (samples_.size() > 2 && samples_.front().first < utime - 500'000) samples_.pop_front();
+}
+
+double TiltHistory::at(int64_t utime) const
+{
+    if (samples_.empty()) return 0.0;
+    if (utime <= samples_.front().first) return samples_.front().second;
+    if (utime >= samples_.back().first) return samples_.back().second;
+    const auto hi = std::lower_bound(samples_.begin(), samples_.end(), utime,
+                                     [](const auto& s, int64_t t) { return s.first < t; });
+    const auto lo = hi - 1;
+    const double f = static_cast<double>(utime - lo->first) / static_cast<double>(hi->first - lo->first);
+    return lo->second + f * (hi->second - lo->second);
+}
+
+ServoPort::ServoPort(const std::string& link_path, const simworld::Scenario& s, int64_t now_utime, TiltHistory& tilt)
+    : DevicePort(link_path),
+      drive_([&] {
+          servo::DriveModel m;
+          m.node_id = static_cast<uint8_t>(s.servo.node_id);
+          return m;
+      }()),
+      counts_per_rad_(s.servo.counts_per_rad()),
+      tilt_(tilt)
+{
+    drive_.power_on(now_utime);
+    tilt_.add(now_utime, tilt_rad());
+}
+
+double ServoPort::tilt_rad() const
+{
+    return drive_.position_counts() / counts_per_rad_;
+}
+
+std::size_t ServoPort::service(bool readable, int64_t now)
+{
+    std::vector<uint8_t> in;
+    if (readable && read_input(in) > 0)
+        for (const auto& f : adapter_.feed(in.data(), in.size(), now)) drive_.on_frame(f, now);
+    drive_.advance(now);
+    tilt_.add(now, tilt_rad());
+    for (const auto& f : drive_.take_outgoing()) adapter_.on_bus_frame(f, now);
+    const std::string out = adapter_.take_output();
+    return write_output(reinterpret_cast<const uint8_t*>(out.data()), out.size());
+}
+
+LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed)
+    : DevicePort(link_path), rng_(seed)
+{
+    lms::DeviceOptions o;
+    o.seed = seed;
+    const double noise_m = world.scenario().laser.range_noise_m;
+    o.beam_scene = [&world, &tilt, noise_m, this](double angle_rad, int64_t beam_utime) {
+        const simworld::TruthState s = world.truth(beam_utime);
+        const double r = world.beam_range_m(s, tilt.at(beam_utime), angle_rad, 81.0);
+        if (!std::isfinite(r) || noise_m <= 0) return r;
+        std::normal_distribution<double> noise(0.0, noise_m);
+        return std::max(0.0, r + noise(rng_));
+    };
+    device_ = std::make_unique<lms::LmsDevice>(std::move(o));
+}
+
+std::size_t LmsPort::service(bool readable, int64_t now)
+{
+    std::vector<uint8_t> in, out;
+    const int host_baud = pty_.slave_baud();
+    if (readable && read_input(in) > 0) device_->receive(in.data(), in.size(), host_baud, now, out);
+    device_->tick(now, host_baud, out);
+    return write_output(out.data(), out.size());
+}
+
+GpsPort::GpsPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed)
+    : DevicePort(link_path)
+{
+    const simworld::Scenario& s = world.scenario();
+    gps::EmulatorConfig c;
+    c.protocol = s.gps.protocol == "nmea" ? gps::Protocol::nmea : gps::Protocol::novatel;
+    c.noise_scale = s.gps.noise_scale;
+    c.seed = seed;
+    c.script = gps::parse_script(s.gps.position_types);
+    c.undulation_m = s.undulation_m;
+    c.trajectory = [&world, undulation = s.undulation_m](int64_t utime) {
+        const simworld::TruthState t = world.truth(utime);
+        const simworld::Geodetic g = world.antenna_position(t);
+        gps::AntennaTruth a;
+        a.latitude_deg = g.latitude_deg;
+        a.longitude_deg = g.longitude_deg;
+        a.height_msl_m = g.height_m - undulation;
+        a.horizontal_speed_mps = std::hypot(t.velocity_mps.x(), t.velocity_mps.y());
+        // Track over ground; standing still, a receiver reports the last one: the heading.
+        const double yaw = a.horizontal_speed_mps > 0.01 ? std::atan2(t.velocity_mps.y(), t.velocity_mps.x()) : t.yaw_rad;
+        double track = geometry::track_from_enu_yaw(yaw) * kRadToDeg;
+        if (track < 0) track += 360.0;
+        a.track_deg = track;
+        a.vertical_speed_mps = t.velocity_mps.z();
+        return a;
+    };
+    receiver_ = std::make_unique<gps::GpsEmulator>(std::move(c), now_utime);
+}
+
+std::size_t GpsPort::service(bool readable, int64_t now)
+{
+    std::vector<uint8_t> in;
+    // A host at another rate hears noise and is heard as noise: it gets nothing here.
+    const bool baud_matches = pty_.slave_baud() == receiver_->baud();
+    std::string out;
+    if (readable && read_input(in) > 0 && baud_matches) out = receiver_->on_host_bytes(in.data(), in.size());
+    out += receiver_->tick(now);
+    if (!baud_matches) return out.size();
+    return write_output(reinterpret_cast<const uint8_t*>(out.data()), out.size());
+}
+
+ImuPort::ImuPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed)
+    : DevicePort(link_path)
+{
+    const simworld::ImuSpec& spec = world.scenario().imu;
+    imu::EmulatorConfig c;
+    constexpr double deg = kPi / 180.0;
+    c.noise.angle_sigma_rad = spec.angle_sigma_deg * deg;
+    c.noise.rate_sigma_radps = spec.rate_sigma_dps * deg;
+    c.noise.accel_sigma_mps2 = spec.accel_sigma_mps2;
+    c.noise.seed = seed;
+    // The unit's NED/FRD convention from the body's ENU/FLU truth: roll the same, pitch and
+    // yaw rate negated (FRD's Z is down), yaw clockwise from north plus the declination.
+    c.attitude = [&world, declination = spec.declination_deg * deg](double t_s) {
+        const simworld::TruthState s = world.truth(std::llround(t_s * 1e6));
+        imu::NedMotion m;
+        m.roll_rad = s.roll_rad;
+        m.pitch_rad = -s.pitch_rad;
+        m.yaw_rad = std::remainder(kPi / 2 - s.yaw_rad + declination, 2 * kPi);
+        m.rate_frd_radps = {s.rate_body_radps.x(), -s.rate_body_radps.y(), -s.rate_body_radps.z()};
+        m.accel_ned_mps2 = {s.accel_mps2.y(), s.accel_mps2.x(), -s.accel_mps2.z()};
+        return m;
+    };
+    unit_ = std::make_unique<imu::Gx1Emulator>(std::move(c), static_cast<double>(now_utime) * 1e-6);
+}
+
+std::size_t ImuPort::service(bool readable, int64_t now)
+{
+    std::vector<uint8_t> in;
+    const double t_s = static_cast<double>(now) * 1e-6;
+    const bool baud_matches = pty_.slave_baud() == kBaud;
+    if (readable && read_input(in) > 0 && baud_matches) unit_->receive(in.data(), in.size(), t_s);
+    unit_->advance(t_s);
+    auto& q = unit_->output();
+    if (q.empty()) return 0;
+    std::vector<uint8_t> out(q.begin(), q.end());
+    q.clear();
+    if (!baud_matches) return out.size();
+    return write_output(out.data(), out.size());
+}
+
+}  // namespace ugv::sim::world

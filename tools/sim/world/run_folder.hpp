@@ -1,0 +1,24 @@
+// What ugv-sim world leaves in its run folder besides the device links: the truth height
+// field (for ugv-eval), the vehicle's calibration as the daemons' config fragments (what a
+// calibration of the real vehicle would give), the scenario it ran, and the ready marker.
+#pragma once
+
+#include <string>
+
+#include "ugv/simworld/world.hpp"
+
+namespace ugv::sim::world {
+
+// TOML for ugv-nodscan: the [mount] table. For ugv-pose: gps_antenna_m, then the [datum]
+// table. Each starts with its top-level keys and ends with its table, so it can be appended
+// to a config that has only top-level keys.
+std::string nodscan_calibration(const simworld::Scenario& s);
+std::string pose_calibration(const simworld::Scenario& s);
+
+// Writes path atomically (a temporary file renamed into place); throws std::runtime_error.
+void write_file(const std::string& path, const std::string& bytes);
+
+// Writes truth.hf, scenario.toml, calibration/{nodscan,pose}.toml into dir.
+void write_run_folder(const std::string& dir, const simworld::World& world, const std::string& scenario_toml);
+
+}  // namespace ugv::sim::world

@@ -1,0 +1,184 @@
+// ugv-sim world: one simulated vehicle driving all four device emulators from one clock.
+//
+//   ugv-sim world --run-dir DIR [--scenario FILE] [--lcm-url URL] [--duration S]
+//   ugv-sim world --print-scenario        (the default scenario, a starting point for others)
+//
+// The run folder gets the device links (lms, servo, gps, imu), truth.hf, scenario.toml,
+// calibration/{nodscan,pose}.toml, and `ready` once every device is up. SIM_TRUTH
+// (sim_truth_t) goes out at 100 Hz. It ends after the scenario's path and hold time, after
+// --duration, or on SIGINT/SIGTERM.
+//
+// One thread: poll() on the four pty masters with a 1 ms timeout, then every device is
+// serviced with the same clock reading, so the servo's encoder, the laser's beams, the GPS
+// fixes and the IMU samples all come from one truth.
+#include <poll.h>
+#include <sys/stat.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "device_ports.hpp"
+#include "run_folder.hpp"
+#include "ugv/bus/bus.hpp"
+#include "ugv/bus/typed.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/runtime/config.hpp"
+#include "ugv/sim/command.hpp"
+#include "ugv/sim_truth_t.hpp"
+
+namespace {
+
+using namespace ugv::sim::world;
+namespace sw = ugv::simworld;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+ugv::sim_truth_t truth_message(const sw::World& world, const sw::TruthState& s, double tilt_rad, int64_t seq,
+                               const std::string& scenario_name)
+{
+    ugv::sim_truth_t m{};
+    m.utime = s.utime;
+    m.seq = seq;
+    for (int i = 0; i < 3; ++i) {
+        m.position[i] = s.position_m[i];
+        m.velocity[i] = s.velocity_mps[i];
+    }
+    m.orientation[0] = s.orientation.w();
+    m.orientation[1] = s.orientation.x();
+    m.orientation[2] = s.orientation.y();
+    m.orientation[3] = s.orientation.z();
+    m.roll = s.roll_rad;
+    m.pitch = s.pitch_rad;
+    m.yaw = s.yaw_rad;
+    m.servo_angle = tilt_rad;
+    m.datum_latitude = world.scenario().datum_latitude_deg;
+    m.datum_longitude = world.scenario().datum_longitude_deg;
+    m.datum_height = world.scenario().datum_height_m;
+    m.scenario = scenario_name;
+    return m;
+}
+
+int run(const std::string& dir, const std::string& scenario_toml, const std::string& scenario_file,
+        const std::string& url, double duration_s, uint32_t seed)
+{
+    ugv::runtime::Config cfg = ugv::runtime::Config::parse(scenario_toml, scenario_file);
+    const sw::Scenario scenario = sw::parse_scenario(cfg);
+    if (::mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST) {
+        std::fprintf(stderr, "ugv-sim world: %s: %s\n", dir.c_str(), std::strerror(errno));
+        return 1;
+    }
+    auto bus = ugv::bus::open_live(url);
+    // The path starts a little after the devices appear, so the first truth is not in the past.
+    const int64_t start = ugv::io::now_utime() + 200'000;
+    const sw::World world(scenario, start);
+    write_run_folder(dir, world, scenario_toml);
+
+    TiltHistory tilt;
+    std::unique_ptr<ServoPort> servo;
+    std::vector<std::unique_ptr<DevicePort>> ports;
+    const int64_t now0 = ugv::io::now_utime();
+    if (scenario.devices.servo) {
+        servo = std::make_unique<ServoPort>(dir + "/servo", scenario, now0, tilt);
+    }
+    if (scenario.devices.lms) ports.push_back(std::make_unique<LmsPort>(dir + "/lms", world, tilt, seed));
+    if (scenario.devices.gps) ports.push_back(std::make_unique<GpsPort>(dir + "/gps", world, now0, seed + 1));
+    if (scenario.devices.imu) ports.push_back(std::make_unique<ImuPort>(dir + "/imu", world, now0, seed + 2));
+    write_file(dir + "/ready", "");
+    const int64_t end = duration_s > 0 ? start + static_cast<int64_t>(duration_s * 1e6) : world.end_utime();
+    std::fprintf(stderr, "ugv-sim world: scenario %s, %.1f s, devices in %s; truth on SIM_TRUTH\n",
+                 scenario.name.c_str(), static_cast<double>(end - start) * 1e-6, dir.c_str());
+
+    std::vector<DevicePort*> all;
+    if (servo) all.push_back(servo.get());
+    for (auto& p : ports) all.push_back(p.get());
+    std::vector<pollfd> fds(all.size());
+    int64_t next_truth = start, seq = 0;
+    std::size_t dropped = 0;
+    while (!g_stop) {
+        for (std::size_t i = 0; i < all.size(); ++i) fds[i] = {all[i]->fd(), POLLIN, 0};
+        ::poll(fds.data(), fds.size(), 1);
+        const int64_t now = ugv::io::now_utime();
+        if (now >= end) break;
+        // The servo first: the laser's beams read the tilt it just recorded.
+        for (std::size_t i = 0; i < all.size(); ++i) dropped += all[i]->service((fds[i].revents & POLLIN) != 0, now);
+        if (now >= next_truth) {
+            const sw::TruthState s = world.truth(now);
+            ugv::bus::publish(*bus, "SIM_TRUTH", truth_message(world, s, tilt.at(now), seq++, scenario.name));
+            next_truth += 10'000;
+            if (next_truth <= now) next_truth = now + 10'000;
+        }
+    }
+    std::fprintf(stderr, "ugv-sim world: %s; %lld truth messages, %zu device bytes not taken by the host\n",
+                 g_stop ? "stopped" : "scenario done", static_cast<long long>(seq), dropped);
+    return 0;
+}
+
+int world_main(int argc, char** argv)
+{
+    CLI::App app{"one simulated vehicle driving all four device emulators (SICK LMS, CAN servo, GPS, IMU)", argv[0]};
+    std::string dir, scenario_path, url;
+    double duration_s = 0;
+    unsigned seed = 1;
+    bool print = false;
+    app.add_option("--run-dir", dir, "folder for the device links, truth.hf, calibration/ and the ready marker");
+    app.add_option("--scenario", scenario_path, "scenario TOML (default: the report's demonstration)");
+    app.add_option("--lcm-url", url, "LCM URL for SIM_TRUTH (default: LCM_DEFAULT_URL)");
+    app.add_option("--duration", duration_s, "end after S seconds instead of at the end of the path")
+        ->check(CLI::Range(0.0, 1e6));
+    app.add_option("--seed", seed, "noise seed");
+    app.add_flag("--print-scenario", print, "print the default scenario and exit");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    }
+    if (print) {
+        std::fputs(ugv::simworld::default_scenario_toml(), stdout);
+        return 0;
+    }
+    if (dir.empty()) {
+        std::fprintf(stderr, "%s: --run-dir is required\n", argv[0]);
+        return 2;
+    }
+    std::string text = ugv::simworld::default_scenario_toml(), name = "<default scenario>";
+    if (!scenario_path.empty()) {
+        std::ifstream in(scenario_path);
+        if (!in) {
+            std::fprintf(stderr, "%s: %s: cannot read the scenario\n", argv[0], scenario_path.c_str());
+            return 2;
+        }
+        std::stringstream ss;
+        ss << in.rdbuf();
+        text = ss.str();
+        name = scenario_path;
+    }
+    struct sigaction sa{};
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    std::signal(SIGPIPE, SIG_IGN);
+    try {
+        return run(dir, text, name, url, duration_s, seed);
+    } catch (const ugv::runtime::ConfigError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 1;
+    }
+}
+
+}  // namespace
+
+UGV_SIM_COMMAND("world", "one simulated vehicle (scenario TOML) driving all four emulators, with ground truth", world_main);
