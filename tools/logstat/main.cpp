@@ -1,13 +1,20 @@
 // ugv-logstat: rate, size and sequence gaps per channel of an LCM log.
 //   ugv-logstat LOG [--channel REGEX] [--json]
+//   ugv-logstat LOG --scan-to-map [--scan-channel LMS_SCAN] [--map-channel TERRAIN_MAP]
+//       latency from each laser scan to the first map holding its points (scan_to_map.hpp)
 // Exit 0; 2 when the log cannot be read.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <regex>
 
 #include <CLI/CLI.hpp>
 
 #include "ugv/bus/bus.hpp"
+#include "ugv/bus/typed.hpp"
+#include "ugv/laser_scan_t.hpp"
 #include "ugv/logstat/channel_stats.hpp"
+#include "ugv/logstat/scan_to_map.hpp"
 
 int main(int argc, char** argv)
 {
@@ -18,6 +25,11 @@ int main(int argc, char** argv)
     app.add_option("log", log, "LCM log file")->required()->check(CLI::ExistingFile);
     app.add_option("--channel", channel, "only channels matching this regex");
     app.add_flag("--json", json, "one JSON object per channel instead of a table");
+    bool scan_to_map = false;
+    std::string scan_channel = "LMS_SCAN", map_channel = "TERRAIN_MAP";
+    app.add_flag("--scan-to-map", scan_to_map, "latency from each laser scan to the first map holding its points");
+    app.add_option("--scan-channel", scan_channel, "with --scan-to-map");
+    app.add_option("--map-channel", map_channel, "with --scan-to-map");
     CLI11_PARSE(app, argc, argv);
 
     std::unique_ptr<ugv::bus::Bus> bus;
@@ -26,6 +38,30 @@ int main(int argc, char** argv)
     } catch (const ugv::bus::BusError& e) {
         std::fprintf(stderr, "ugv-logstat: %s\n", e.what());
         return 2;
+    }
+    if (scan_to_map) {
+        ugv::logstat::ScanToMapLatency latency;
+        ugv::bus::subscribe<ugv::laser_scan_t>(
+            *bus, scan_channel, [&](const std::string&, const ugv::laser_scan_t& s, int64_t t) {
+                const double span_us = static_cast<double>(s.time_increment) * 1e6 * std::max(0, s.nranges - 1);
+                latency.add_scan(t, s.utime + std::llround(span_us));
+            });
+        bus->subscribe(map_channel, [&](const std::string&, const uint8_t* d, std::size_t n, int64_t t) {
+            int64_t utime = 0, seq = 0;
+            if (ugv::logstat::read_header(d, n, utime, seq)) latency.add_map(t, utime);
+        });
+        while (bus->handle(0) == ugv::bus::HandleResult::handled) {
+        }
+        const auto& v = latency.latencies_us();
+        if (v.empty()) {
+            std::fprintf(stderr, "ugv-logstat: no scan on %s is covered by a map on %s\n", scan_channel.c_str(),
+                         map_channel.c_str());
+            return 1;
+        }
+        std::printf("%s -> %s latency over %zu scans: p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu scans not in a map)\n",
+                    scan_channel.c_str(), map_channel.c_str(), v.size(), ugv::logstat::percentile(v, 50) / 1e3,
+                    ugv::logstat::percentile(v, 99) / 1e3, ugv::logstat::percentile(v, 100) / 1e3, latency.pending());
+        return 0;
     }
     ugv::logstat::StreamStats stats;
     bus->subscribe(channel, [&](const std::string& ch, const uint8_t* d, std::size_t n, int64_t t) { stats.add(ch, d, n, t); });
