@@ -2,6 +2,8 @@
 //   ugv-latency --from RAW_LMS --to LMS_SCAN --for 10     last telegram byte -> scan on LCM
 //   ugv-latency --to SERVO_STATE --for 10                 receive stamp (utime) -> on LCM
 //   ugv-latency --from IMU --from-recv --to POSE --for 10 IMU on LCM -> POSE on LCM
+//   --fifo 60 --lock-memory: measure from a real-time process, so that the measuring end's
+//   own scheduling delay does not land in the figures of a real-time daemon.
 // Exit 0 with one line of figures; 1 when nothing could be measured; 2 for bad arguments.
 #include <cstdio>
 
@@ -12,6 +14,7 @@
 #include "ugv/io/clock.hpp"
 #include "ugv/latency/latency_meter.hpp"
 #include "ugv/logstat/channel_stats.hpp"
+#include "ugv/runtime/realtime.hpp"
 
 int main(int argc, char** argv)
 {
@@ -25,7 +28,11 @@ int main(int argc, char** argv)
     app.add_flag("--from-recv", from_recv, "start at the --from message's receive time, not its utime field");
     app.add_option("--for", seconds, "seconds to measure")->check(CLI::PositiveNumber);
     app.add_option("--lcm-url", url, "LCM URL (default LCM_DEFAULT_URL, else udpm ttl=0)");
+    ugv::runtime::RealtimeOptions rt;
+    app.add_option("--fifo", rt.fifo_priority, "run SCHED_FIFO at this priority (1-99; 0 = no)")->check(CLI::Range(0, 99));
+    app.add_flag("--lock-memory", rt.lock_memory, "mlockall before measuring");
     CLI11_PARSE(app, argc, argv);
+    for (const std::string& w : ugv::runtime::apply_realtime(rt)) std::fprintf(stderr, "ugv-latency: %s\n", w.c_str());
     std::unique_ptr<ugv::bus::Bus> bus;
     try {
         bus = ugv::bus::open_live(url.empty() ? ugv::bus::default_url() : url);

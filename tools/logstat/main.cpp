@@ -59,8 +59,9 @@ int main(int argc, char** argv)
             return 1;
         }
         std::printf("%s -> %s latency over %zu scans: p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu scans not in a map)\n",
-                    scan_channel.c_str(), map_channel.c_str(), v.size(), ugv::logstat::percentile(v, 50) / 1e3,
-                    ugv::logstat::percentile(v, 99) / 1e3, ugv::logstat::percentile(v, 100) / 1e3, latency.pending());
+                    scan_channel.c_str(), map_channel.c_str(), v.size(), static_cast<double>(ugv::logstat::percentile(v, 50)) / 1e3,
+                    static_cast<double>(ugv::logstat::percentile(v, 99)) / 1e3,
+                    static_cast<double>(ugv::logstat::percentile(v, 100)) / 1e3, latency.pending());
         return 0;
     }
     ugv::logstat::StreamStats stats;

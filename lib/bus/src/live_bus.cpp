@@ -49,7 +49,11 @@ public:
         return HandleResult::error;
     }
 
-    int fd() const override { return lcm_get_fileno(lcm_); }
+    // LCM 1.3.1 opens its receive socket and joins the multicast group on the first call of
+    // lcm_get_fileno(); from then on every datagram of every channel on the group reaches this
+    // process (a map alone is ~190 fragments per publication). A bus that subscribes to
+    // nothing -- the device daemons only publish -- never asks, and so receives nothing.
+    int fd() const override { return subs_.empty() ? -1 : lcm_get_fileno(lcm_); }
     int64_t now_utime() const override { return io::now_utime(); }
     std::string describe() const override { return url_; }
 

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# ugv-spy under Xvfb while ugv-test-daemon publishes: the "LCM Spy" window comes up, lcm-spy
+# ugv-spy under Xvfb while the simulated vehicle runs (ugv-sim world and every daemon, from
+# tools/lib/stack.sh): the "LCM Spy" window comes up, lcm-spy
 # loads our 12 types from the jar, and a screenshot is kept in build/test-artifacts/ugv-spy.png
 # (look at it: the Type column names our types; an unknown type would show "?").
 set -uo pipefail
 build=$1 src=$2
 for t in Xvfb xwd xwininfo java; do command -v $t >/dev/null || { echo "SKIPPED: $t is not installed"; exit 77; }; done
 work=$(mktemp -d /tmp/ugv-spy-XXXXXX)
+export UGV_BIN_DIR=$build/bin
+# shellcheck source=../../../tools/lib/stack.sh
+. "$src/tools/lib/stack.sh"
 pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; wait 2>/dev/null; rm -rf "$work"; }
+cleanup() { stack_stop >/dev/null 2>&1; for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; wait 2>/dev/null; rm -rf "$work"; }
 trap cleanup EXIT
 pass=0 fail=0
 check() { if [ "$1" = ok ]; then pass=$((pass+1)); echo "ok   $2"; else fail=$((fail+1)); echo "FAIL $2"; fi; }
@@ -15,7 +19,10 @@ check() { if [ "$1" = ok ]; then pass=$((pass+1)); echo "ok   $2"; else fail=$((
 display=:$((90 + RANDOM % 400))
 Xvfb "$display" -screen 0 1024x700x24 -nolisten tcp >"$work/xvfb.log" 2>&1 & pids+=($!)
 url="udpm://239.255.76.67:7642?ttl=0"
-"$build/bin/ugv-test-daemon" --lcm-url "$url" >/dev/null 2>&1 & pids+=($!)
+stack_init "$work/stack" "$url"
+stack_set lms 'units = "cm"'
+stack_start_devices --duration 60 || { echo "FAIL the simulator did not come up"; exit 1; }
+stack_start_daemons
 sleep 1
 DISPLAY=$display "$build/bin/ugv-spy" --lcm-url "$url" >"$work/spy.out" 2>&1 & pids+=($!)
 up=no

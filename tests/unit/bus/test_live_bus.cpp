@@ -51,6 +51,14 @@ TEST_CASE("live bus: typed publish reaches a typed subscriber with every field i
     CHECK(got[0].flags[1] == laser_scan_t::FLAG_DAZZLE);
 }
 
+TEST_CASE("live bus: a publisher that subscribes to nothing has no receive socket to poll")
+{
+    auto a = bus::open_live(test::lcm_url(7604));
+    CHECK(a->fd() == -1);  // so a device daemon's loop never wakes for other daemons' traffic
+    bus::subscribe<imu_t>(*a, "IMU", [](const std::string&, const imu_t&, int64_t) {});
+    CHECK(a->fd() >= 0);
+}
+
 TEST_CASE("live bus: bytes that do not decode as the type are counted and dropped")
 {
     auto a = bus::open_live(test::lcm_url(7602));

@@ -46,7 +46,8 @@ public:
     virtual void subscribe(const std::string& channel_regex, RawHandler handler) = 0;
     // Dispatches what is waiting (live: waits up to timeout_ms; replay: the next event).
     virtual HandleResult handle(int timeout_ms) = 0;
-    // For poll(): readable when handle() has something to do. -1 when not pollable (replay).
+    // For poll(): readable when handle() has something to do. -1 when not pollable (replay)
+    // or when a live bus has no subscription (then it does not receive at all).
     virtual int fd() const { return -1; }
     // The time of the event being dispatched (replay) or now (live), us since the epoch.
     virtual int64_t now_utime() const = 0;

@@ -1,0 +1,208 @@
+# shellcheck shell=bash
+# tools/lib/stack.sh: start and stop the whole ugv stack from bash (tools/demo, tests/bench).
+# Source it, then:
+#
+#   stack_init OUT [URL]          output folder (config/, run/, stderr/, ugv.lcm) and LCM URL
+#   stack_set NAME 'key = value'  an extra config line for daemon NAME (lms gps imu servo
+#                                 nodscan pose terrain); top-level keys or whole tables
+#   stack_start_logger [ARGS...]  lcm-logger -> OUT/ugv.lcm (ARGS: e.g. -c REGEX)
+#   stack_start_devices [ARGS...] the four devices: `ugv-sim world` (ARGS go to it) when ugv-sim
+#                                 offers it and no real device is given, else stack_start_device
+#                                 for each
+#   stack_start_device NAME [ARGS...]  one device: the real one given by its variable (below),
+#                                 else its emulator `ugv-sim NAME --pty OUT/run/NAME ARGS`
+#   stack_start_daemons [NAME...] daemons (default: all seven), config OUT/config/NAME.toml
+#   stack_stop                    daemons, then simulators, then the logger: SIGTERM, wait up
+#                                 to STACK_STOP_WAIT_S (5) each, SIGKILL and report the rest
+#   stack_counter CH NAME [LOG]   a counter of the daemon status on channel CH (STATUS_LMS):
+#                                 live (the next status) or, with LOG, the last one in the log
+#   stack_counter_in JSON NAME    the same from a status already read with stack_status_json
+#   stack_state CH [LOG]          its state (0 STARTING, 1 RUNNING, 2 DEGRADED, 3 FAULT, 4 STOPPING)
+#   stack_wait_running CH S [ST]  wait up to S seconds for state RUNNING (or ST); 1 if it never came
+# and the pieces they use: stack_spawn NAME CMD... (any process, stopped with the others: by
+# its name's group ugv-*, sim-*, lcm-logger*), stack_alive NAME, stack_has_world,
+# stack_given_device NAME, stack_status_json CH [LOG], stack_unclean.
+#
+# Real devices (anything not given is simulated): UGV_LMS_DEVICE, UGV_GPS_DEVICE,
+# UGV_IMU_DEVICE (serial ports), UGV_SERVO_TRANSPORT (`socketcan:can0` or `slcan:/dev/ttyACM0@115200`).
+# With any of them set, the rest come from the separate emulators (the one-world simulator
+# drives all four devices or none).
+#
+# After stack_stop: STACK_KILLED (names that had to be killed) and STACK_EXIT[name] (exit
+# statuses). STACK_PREFIX (words, e.g. `ip netns exec host-a`) runs the next processes inside
+# something; set it for one call: `STACK_PREFIX="ip netns exec a" stack_start_devices`.
+# Every process is a child of the sourcing shell: call the start functions directly, never in
+# $( ) or a pipeline.
+
+STACK_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+STACK_BIN=${UGV_BIN_DIR:-$STACK_ROOT/build/bin}
+STACK_STOP_WAIT_S=${STACK_STOP_WAIT_S:-5}
+STACK_DAEMONS=(lms gps imu servo nodscan pose terrain)
+declare -A STACK_PIDS=() STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=()
+STACK_KILLED=()
+export STACK_SIM=none   # none | world | emulators: what the devices are (for the scripts)
+
+stack_init() {  # stack_init OUT [URL]: a new stack (forgets the previous one's settings)
+    STACK_OUT=$1
+    STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=() STACK_KILLED=() STACK_SIM=none
+    STACK_URL=${2:-${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}}
+    export LCM_DEFAULT_URL=$STACK_URL
+    mkdir -p "$STACK_OUT/config" "$STACK_OUT/run" "$STACK_OUT/stderr"
+}
+
+stack_set() { STACK_EXTRA[$1]+="$2"$'\n'; }
+
+# stack_spawn NAME CMD...: one background process, its output in OUT/stderr/NAME.log.
+stack_spawn() {
+    local name=$1; shift
+    # shellcheck disable=SC2086  # STACK_PREFIX is a list of words on purpose
+    ${STACK_PREFIX:-} "$@" >"$STACK_OUT/stderr/$name.log" 2>&1 &
+    STACK_PIDS[$name]=$!
+}
+
+stack_alive() { [ -n "${STACK_PIDS[$1]:-}" ] && kill -0 "${STACK_PIDS[$1]}" 2>/dev/null; }
+
+stack_start_logger() {
+    stack_spawn lcm-logger lcm-logger --lcm-url="$STACK_URL" -f "$@" "$STACK_OUT/ugv.lcm"
+}
+
+stack_has_world() { "$STACK_BIN/ugv-sim" --help 2>/dev/null | grep -q '^  world '; }
+
+# stack_wait_paths S PATH...: wait up to S seconds until every path exists.
+stack_wait_paths() {
+    local deadline=$((SECONDS + $1)) p; shift
+    for p in "$@"; do
+        while [ ! -e "$p" ]; do
+            [ $SECONDS -ge $deadline ] && { echo "stack: $p did not appear" >&2; return 1; }
+            sleep 0.1
+        done
+    done
+}
+
+# stack_given_device NAME: the real device given for NAME (lms gps imu servo), or nothing.
+stack_given_device() {
+    case $1 in
+        lms) echo "${UGV_LMS_DEVICE:-}" ;; gps) echo "${UGV_GPS_DEVICE:-}" ;;
+        imu) echo "${UGV_IMU_DEVICE:-}" ;; servo) echo "${UGV_SERVO_TRANSPORT:-}" ;;
+    esac
+}
+
+# stack_start_device NAME [ARGS...]: one device: the real one when given, else its emulator
+# `ugv-sim NAME --pty OUT/run/NAME ARGS`.
+stack_start_device() {
+    local name=$1 pty=$STACK_OUT/run/$1 real; shift
+    real=$(stack_given_device "$name")
+    if [ -z "$real" ]; then
+        stack_spawn "sim-$name" "$STACK_BIN/ugv-sim" "$name" --pty "$pty" "$@"
+        STACK_SIM=emulators
+        real=$pty
+        stack_wait_paths 10 "$pty" || return 1
+        [ "$name" = servo ] && real="slcan:$pty@115200"
+    fi
+    STACK_DEVICE[$name]=$real
+}
+
+stack_start_devices() {
+    local run=$STACK_OUT/run d
+    if [ -z "${UGV_LMS_DEVICE:-}${UGV_GPS_DEVICE:-}${UGV_IMU_DEVICE:-}${UGV_SERVO_TRANSPORT:-}" ] && stack_has_world; then
+        STACK_SIM=world
+        stack_spawn sim-world "$STACK_BIN/ugv-sim" world --run-dir "$run" --lcm-url "$STACK_URL" "$@"
+        for d in lms gps imu; do STACK_DEVICE[$d]=$run/$d; done
+        STACK_DEVICE[servo]="slcan:$run/servo@115200"
+        stack_wait_paths 15 "$run/ready"
+        return
+    fi
+    for d in lms gps imu servo; do stack_start_device "$d" || return 1; done
+}
+
+# The config of one daemon: its device, the script's extra lines, then the simulator's
+# calibration for it (tables, so they go last).
+stack_write_config() {
+    local name=$1 cfg=$STACK_OUT/config/$1.toml calib=$STACK_OUT/run/calibration/$1.toml
+    {
+        case $name in
+            lms|gps|imu) printf 'device = "%s"\n' "${STACK_DEVICE[$name]:-}" ;;
+            servo) printf 'transport = "%s"\n' "${STACK_DEVICE[servo]}" ;;
+        esac
+        printf '%s' "${STACK_EXTRA[$name]:-}"
+        [ -f "$calib" ] && cat "$calib"
+    } >"$cfg"
+}
+
+stack_start_daemons() {
+    local names=("$@") name
+    [ ${#names[@]} -eq 0 ] && names=("${STACK_DAEMONS[@]}")
+    for name in "${names[@]}"; do
+        stack_write_config "$name"
+        stack_spawn "ugv-$name" "$STACK_BIN/ugv-$name" --config "$STACK_OUT/config/$name.toml"
+    done
+}
+
+# stack_stop_group PATTERN: SIGTERM to every process whose name matches, then a bounded wait.
+# shellcheck disable=SC2053  # PATTERN is a glob on purpose
+stack_stop_group() {
+    local pattern=$1 name pid deadline
+    for name in "${!STACK_PIDS[@]}"; do
+        [[ $name == $pattern ]] && kill -TERM "${STACK_PIDS[$name]}" 2>/dev/null
+    done
+    deadline=$((SECONDS + STACK_STOP_WAIT_S))
+    for name in "${!STACK_PIDS[@]}"; do
+        [[ $name == $pattern ]] || continue
+        pid=${STACK_PIDS[$name]}
+        while kill -0 "$pid" 2>/dev/null && [ $SECONDS -lt $deadline ]; do sleep 0.1; done
+        if kill -0 "$pid" 2>/dev/null; then
+            kill -KILL "$pid" 2>/dev/null
+            STACK_KILLED+=("$name")
+            echo "stack: $name did not stop within ${STACK_STOP_WAIT_S} s (killed)" >&2
+        fi
+        wait "$pid" 2>/dev/null
+        STACK_EXIT[$name]=$?
+        unset "STACK_PIDS[$name]"
+    done
+}
+
+stack_stop() {
+    stack_stop_group 'ugv-*'
+    stack_stop_group 'sim-*'
+    sleep 0.5   # the daemons' last status messages reach the logger
+    stack_stop_group 'lcm-logger*'
+}
+
+# stack_unclean: the processes stopped so far that did not exit 0, as NAME:STATUS words.
+stack_unclean() {
+    local name bad=()
+    for name in "${!STACK_EXIT[@]}"; do
+        [ "${STACK_EXIT[$name]}" -eq 0 ] || bad+=("$name:${STACK_EXIT[$name]}")
+    done
+    echo "${bad[*]}"
+}
+
+# stack_status_json CH [LOG]: one daemon_status_t as JSON (the next live one, or the log's last).
+stack_status_json() {
+    if [ -n "${2:-}" ]; then
+        "$STACK_BIN/ugv-dump" --log "$2" --channel "$1" | tail -n 1
+    else
+        # shellcheck disable=SC2086
+        ${STACK_PREFIX:-} "$STACK_BIN/ugv-dump" --lcm-url "$STACK_URL" --channel "$1" --count 1 --timeout 3
+    fi
+}
+
+stack_counter() {  # prints the value, or nothing when the status or the counter is missing
+    stack_counter_in "$(stack_status_json "$1" "${3:-}")" "$2"
+}
+
+# stack_counter_in JSON NAME: a counter of a status already read (several from one message).
+stack_counter_in() {
+    jq -r --arg n "$2" '.fields | [.counter_names, .counter_values] | transpose | map(select(.[0] == $n)) | .[0][1] // empty' <<<"$1"
+}
+
+stack_state() { stack_status_json "$1" "${2:-}" | jq -r '.fields.state // empty'; }
+
+stack_wait_running() {  # stack_wait_running CH S [STATE]: RUNNING (1) or the given state
+    local deadline=$((SECONDS + $2)) state
+    while [ $SECONDS -lt $deadline ]; do
+        state=$(stack_state "$1")
+        [ "$state" = 1 ] || [ "$state" = "${3:-1}" ] && return 0
+    done
+    return 1
+}
