@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
+#include "fusion_kernels.hpp"
 #include "ugv/terrain/point_variance.hpp"
 #include "ugv/terrain/spread.hpp"
 
@@ -52,6 +55,26 @@ inline bool all_finite(float a, float b, float c, float d, float e, float f)
 
 constexpr float kNanF = std::numeric_limits<float>::quiet_NaN();
 
+// The grids' ring layouts for place_points: the egocentric grid wraps its rows by m_i
+// (eq. 6), the world grid both axes.
+void set_ring(detail::Placement& p, const EgocentricGrid& g)
+{
+    p.row_shift = detail::splat(static_cast<float>(g.wrap_index()));
+    p.ring_rows = detail::splat(static_cast<float>(g.nx()));
+    p.column_shift = detail::splat(0.0f);
+    p.ring_columns = detail::splat(static_cast<float>(g.ny()));  // a clamped column never reaches it
+    p.row_stride = detail::splat(static_cast<float>(g.ny()));
+}
+
+void set_ring(detail::Placement& p, const WorldGrid& g)
+{
+    p.row_shift = detail::splat(static_cast<float>(g.ring_row()));
+    p.ring_rows = detail::splat(static_cast<float>(g.size()));
+    p.column_shift = detail::splat(static_cast<float>(g.ring_column()));
+    p.ring_columns = detail::splat(static_cast<float>(g.size()));
+    p.row_stride = detail::splat(static_cast<float>(g.size()));
+}
+
 }  // namespace
 
 struct TerrainMapper::Frame
@@ -60,7 +83,8 @@ struct TerrainMapper::Frame
     double yaw_rad;            // ENU yaw of the local X axis
 };
 
-TerrainMapper::TerrainMapper(const MapConfig& config) : config_(config), history_(config.pose_history_us)
+TerrainMapper::TerrainMapper(const MapConfig& config)
+    : config_(config), history_(config.pose_history_us), placed_(std::make_unique<detail::PlacedPoints>())
 {
     config_.validate();
     if (config_.mode == MapMode::egocentric) {
@@ -72,6 +96,10 @@ TerrainMapper::TerrainMapper(const MapConfig& config) : config_(config), history
                                              config_.grid_size_m);
     }
 }
+
+TerrainMapper::~TerrainMapper() = default;
+TerrainMapper::TerrainMapper(TerrainMapper&&) noexcept = default;
+TerrainMapper& TerrainMapper::operator=(TerrainMapper&&) noexcept = default;
 
 void TerrainMapper::clear()
 {
@@ -183,10 +211,15 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
         ++counters_.rejected_outside_map;
         return;
     }
+    CellSums* const sums = grid.cells().sums_data();
+    uint32_t* const counts = grid.cells().counts_data();
+    const float z_f = static_cast<float>(z);
     for (int a = 0; a < fx.count; ++a) {
         for (int b = 0; b < fy.count; ++b) {
-            CellSums& cell = grid.at(grid.physical(fx.first + a, fy.first + b));
-            fuse_sample(cell, fx.centre[a] * g, fy.centre[b] * g, z, w * fx.fraction[a] * fy.fraction[b]);
+            const int cell = grid.physical(fx.first + a, fy.first + b);
+            alignas(16) float sample[4];
+            detail::store4(sample, detail::Float4{0.0f, fx.centre[a] * g, fy.centre[b] * g, z_f});
+            detail::fuse_point_into(sums[cell], counts[cell], sample, w * fx.fraction[a] * fy.fraction[b]);
         }
     }
     ++counters_.points_fused;
@@ -208,7 +241,7 @@ inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, fl
         ++counters_.rejected_outside_map;
         return;
     }
-    fuse_sample(grid.at(cell), x_rel, y_rel, z, w);
+    grid.fuse(cell, x_rel, y_rel, z, w);
     ++counters_.points_fused;
 }
 
@@ -222,15 +255,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
         return 0;
     }
     // The batch's time span: the poses at its two ends bound every point's pose.
-    float t_min = std::numeric_limits<float>::infinity(), t_max = -t_min;
-    for (std::size_t k = 0; k < n; ++k) {
-        const float t = batch.time_offset_s[k];
-        const bool finite = t * 0.0f == 0.0f;  // branch-free, so that it vectorises
-        const float lo = finite ? t : std::numeric_limits<float>::infinity();
-        const float hi = finite ? t : -std::numeric_limits<float>::infinity();
-        t_min = lo < t_min ? lo : t_min;
-        t_max = hi > t_max ? hi : t_max;
-    }
+    float t_min = 0.0f, t_max = 0.0f;
+    detail::value_range(batch.time_offset_s, n, t_min, t_max);
     const Frame frame = local_frame();
     Pose p0, p1;
     const bool fast = t_min <= t_max && t_max - t_min <= config_.max_interpolation_span_s &&
@@ -242,35 +268,46 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
         // for 1 rad/s, and exact at the ends. The eq. 19 orientation error blends likewise.
         const Affine a0 = body_to_local(p0, frame.origin_m, frame.yaw_rad);
         const Affine a1 = body_to_local(p1, frame.origin_m, frame.yaw_rad);
-        float da[9], db[3];
-        for (int i = 0; i < 9; ++i) da[i] = a1.a[i] - a0.a[i];
-        for (int i = 0; i < 3; ++i) db[i] = a1.b[i] - a0.b[i];
+        detail::Placement placement;
+        for (int row = 0; row < 3; ++row) {
+            for (int c = 0; c < 4; ++c) {
+                const float start = c < 3 ? a0.a[row * 3 + c] : a0.b[row];
+                const float end = c < 3 ? a1.a[row * 3 + c] : a1.b[row];
+                placement.at_start[4 * row + c] = detail::splat(start);
+                placement.change[4 * row + c] = detail::splat(end - start);
+            }
+        }
         const float de0 = static_cast<float>(p0.orientation_error_rad2());
-        const float dde = static_cast<float>(p1.orientation_error_rad2()) - de0;
-        const float inv_span = t_max > t_min ? 1.0f / (t_max - t_min) : 0.0f;
-        const float min_variance = static_cast<float>(config_.min_variance_m2);
+        placement.t_min_s = detail::splat(t_min);
+        placement.inv_span_per_s = detail::splat(t_max > t_min ? 1.0f / (t_max - t_min) : 0.0f);
+        placement.error_at_start_rad2 = detail::splat(de0);
+        placement.error_change_rad2 = detail::splat(static_cast<float>(p1.orientation_error_rad2()) - de0);
+        placement.min_variance_m2 = detail::splat(static_cast<float>(config_.min_variance_m2));
+        // Classical statistics fuse with unit weight: w = 0 / s2 + 1.
+        const bool classical = config_.statistics == StatisticsKind::classical;
+        placement.inverse_scale = detail::splat(classical ? 0.0f : 1.0f);
+        placement.unit_weight = detail::splat(classical ? 1.0f : 0.0f);
         const float spread_above = config_.spread ? static_cast<float>(config_.grid_size_m * config_.grid_size_m)
                                                   : std::numeric_limits<float>::infinity();
-        const bool classical = config_.statistics == StatisticsKind::classical;
-        // Two passes over chunks of points: the first transforms and indexes them and
-        // prefetches their cells, the second fuses. The map (1.4 MB at 150x150) does not
-        // stay in L2, so overlapping the cache misses is what sets the throughput.
-        constexpr std::size_t kChunk = 64;
-        float lx[kChunk], ly[kChunk], lz[kChunk], s2[kChunk], w[kChunk], xr[kChunk], yr[kChunk];
-        int ci[kChunk], cj[kChunk];
-        uint8_t inside[kChunk];
+        placement.spread_above_m2 = detail::splat(spread_above);
         const float g = static_cast<float>(config_.grid_size_m);
-        const float inv_g = 1.0f / g;
-        const float y_min = static_cast<float>(grid.y_min_m());
         const float nx_f = static_cast<float>(grid.nx()), ny_f = static_cast<float>(grid.ny());
-        const float nx_last = nx_f - 0.5f, ny_last = ny_f - 0.5f;
-        uint8_t valid[kChunk];
-        // Classical statistics fuse with unit weight: w = vw_scale / s2 + unit_weight.
-        const float vw_scale = classical ? 0.0f : 1.0f;
-        const float unit_weight = classical ? 1.0f : 0.0f;
-        int cell[kChunk];
-        float x_rel[kChunk], y_rel[kChunk], height[kChunk], weight[kChunk];
+        placement.inv_g = detail::splat(1.0f / g);
+        placement.g = detail::splat(g);
+        placement.y_min_m = detail::splat(static_cast<float>(grid.y_min_m()));
+        placement.nx = detail::splat(nx_f);
+        placement.ny = detail::splat(ny_f);
+        placement.nx_last = detail::splat(nx_f - 0.5f);
+        placement.ny_last = detail::splat(ny_f - 0.5f);
+        set_ring(placement, grid);
+        // Chunks of points, two passes each: place_points (branch-free, 4 points at a time),
+        // then the sums. Only the rare points (invalid, outside, spread) take a branch.
+        constexpr std::size_t kChunk = detail::PlacedPoints::kCapacity;
+        constexpr bool kColumnRing = std::is_same_v<Grid, WorldGrid>;
+        detail::PlacedPoints& placed = *placed_;
         uint64_t fused = 0, non_finite = 0, outside = 0;
+        CellSums* const sums = grid.cells().sums_data();
+        uint32_t* const counts = grid.cells().counts_data();
         for (std::size_t base = 0; base < n; base += kChunk) {
             const std::size_t count = std::min(n - base, kChunk);
             const float* px = batch.x_m + base;
@@ -279,66 +316,72 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             const float* pr = batch.range_m + base;
             const float* pv = batch.variance_m2 + base;
             const float* pt = batch.time_offset_s + base;
-            // Pass 1, branch-free so that it vectorises: transform (the end transforms blended
-            // at each point's time), eq. 19 variance, weight.
-            for (std::size_t k = 0; k < count; ++k) {
-                const float x = px[k], y = py[k], z = pz[k], r = pr[k], v = pv[k], t = pt[k];
-                valid[k] = static_cast<uint8_t>(static_cast<uint8_t>(all_finite(x, y, z, r, v, t)) &
-                                                static_cast<uint8_t>(v >= 0.0f));
-                const float f = (t - t_min) * inv_span;
-                lx[k] = (a0.a[0] + f * da[0]) * x + (a0.a[1] + f * da[1]) * y + (a0.a[2] + f * da[2]) * z +
-                        (a0.b[0] + f * db[0]);
-                ly[k] = (a0.a[3] + f * da[3]) * x + (a0.a[4] + f * da[4]) * y + (a0.a[5] + f * da[5]) * z +
-                        (a0.b[1] + f * db[1]);
-                lz[k] = (a0.a[6] + f * da[6]) * x + (a0.a[7] + f * da[7]) * y + (a0.a[8] + f * da[8]) * z +
-                        (a0.b[2] + f * db[2]);
-                const float raw = point_variance_m2(v, r, de0 + f * dde);
-                const float var = raw > min_variance ? raw : min_variance;
-                s2[k] = var;
-                w[k] = vw_scale / var + unit_weight;
-                // Eq. 5-7 (without the wrap, which pass 2 adds): the cell and the offset from its centre.
-                const float fx = lx[k] * inv_g;
-                const float fy = (ly[k] - y_min) * inv_g;
-                inside[k] = static_cast<uint8_t>(static_cast<uint8_t>(fx >= 0.0f) & static_cast<uint8_t>(fx < nx_f) &
-                                                 static_cast<uint8_t>(fy >= 0.0f) & static_cast<uint8_t>(fy < ny_f));
-                // Clamped so that the conversion is defined for any value (NaN goes to 0).
-                const float fx0 = fx > 0.0f ? fx : 0.0f;
-                const float fy0 = fy > 0.0f ? fy : 0.0f;
-                const float fxc = fx0 < nx_last ? fx0 : nx_last;
-                const float fyc = fy0 < ny_last ? fy0 : ny_last;
-                ci[k] = static_cast<int>(fxc);
-                cj[k] = static_cast<int>(fyc);
-                xr[k] = lx[k] - (static_cast<float>(ci[k]) + 0.5f) * g;
-                yr[k] = ly[k] - y_min - (static_cast<float>(cj[k]) + 0.5f) * g;
+            std::size_t k = 0;
+            for (; k + 4 <= count; k += 4)
+                detail::place_points<kColumnRing>(placement, detail::load4(px + k), detail::load4(py + k), detail::load4(pz + k),
+                                     detail::load4(pr + k), detail::load4(pv + k), detail::load4(pt + k), placed, k);
+            if (k < count) {
+                // The last 1-3 points, padded (the padding is never read back).
+                detail::Float4 in[6] = {};
+                const float* from[6] = {px, py, pz, pr, pv, pt};
+                for (int a = 0; a < 6; ++a)
+                    for (std::size_t q = 0; k + q < count; ++q) in[a][q] = from[a][k + q];
+                detail::place_points<kColumnRing>(placement, in[0], in[1], in[2], in[3], in[4], in[5], placed, k);
             }
-            // Pass 2: index, prefetch the cell (the map does not stay in L2, so overlapping
-            // the cache misses is what sets the throughput), or spread.
-            std::size_t m = 0;
-            for (std::size_t k = 0; k < count; ++k) {
-                if (!valid[k]) {
+            int rare[kChunk];
+            std::size_t rare_count = 0;
+            auto add = [&](std::size_t q) {
+                const int c = placed.cell[q];
+                detail::fuse_point_into(sums[c], counts[c], placed.sample[q], placed.weight[q]);
+            };
+            auto add_or_defer = [&](std::size_t q) {
+                if (placed.fuse[q]) [[likely]]
+                    add(q);
+                else
+                    rare[rare_count++] = static_cast<int>(q);
+            };
+            auto add_group = [&](std::size_t first) {
+                if (placed.all_fuse[first / 4]) [[likely]] {
+                    for (std::size_t q = first; q < first + 4; ++q) add(q);
+                } else {
+                    for (std::size_t q = first; q < first + 4; ++q) add_or_defer(q);
+                }
+            };
+            // Groups of four plain points (nearly all) without a test per point. In a full
+            // chunk the four quarters are interleaved: consecutive points of a scan often hit
+            // the same cell, and a cell's next sum must wait for its last one (a store and a
+            // reload); points 16 apart (8 degrees of a scan) rarely share a cell, so four
+            // such chains overlap.
+            k = 0;
+            if (count == kChunk) {
+                constexpr std::size_t kQuarter = kChunk / 4;
+                for (; k < kQuarter; k += 4) {
+                    const bool plain = placed.all_fuse[k / 4] && placed.all_fuse[(k + kQuarter) / 4] &&
+                                       placed.all_fuse[(k + 2 * kQuarter) / 4] && placed.all_fuse[(k + 3 * kQuarter) / 4];
+                    if (plain) [[likely]] {
+                        for (std::size_t q = k; q < k + 4; ++q)
+                            for (std::size_t part = 0; part < 4; ++part) add(q + part * kQuarter);
+                    } else {
+                        for (std::size_t part = 0; part < 4; ++part) add_group(k + part * kQuarter);
+                    }
+                }
+                k = kChunk;
+            }
+            for (; k + 4 <= count; k += 4) add_group(k);
+            for (; k < count; ++k) add_or_defer(k);
+            fused += count - rare_count;
+            // The rare points, in the order of the slow path: invalid, spread, outside.
+            for (std::size_t q = 0; q < rare_count; ++q) {
+                const int r = rare[q];
+                if (!all_finite(px[r], py[r], pz[r], pr[r], pv[r], pt[r]) || pv[r] < 0.0f) {
                     ++non_finite;
-                    continue;
-                }
-                if (s2[k] > spread_above) {
-                    spread_point(grid, grid.nx(), grid.ny(), lx[k], ly[k], lz[k], s2[k], w[k]);
-                    continue;
-                }
-                if (!inside[k]) {
+                } else if (placed.variance_m2[r] > spread_above) {
+                    spread_point(grid, grid.nx(), grid.ny(), placed.lx[r], placed.ly[r], placed.lz[r],
+                                 placed.variance_m2[r], placed.weight[r]);
+                } else {
                     ++outside;
-                    continue;
                 }
-                const int c = grid.physical(ci[k], cj[k]);
-                x_rel[m] = xr[k];
-                y_rel[m] = yr[k];
-                __builtin_prefetch(&grid.at(c), 1);
-                cell[m] = c;
-                height[m] = lz[k];
-                weight[m] = w[k];
-                ++m;
             }
-            // Pass 3: the ten sums.
-            for (std::size_t q = 0; q < m; ++q) fuse_sample(grid.at(cell[q]), x_rel[q], y_rel[q], height[q], weight[q]);
-            fused += m;
         }
         counters_.points_fused += fused;
         counters_.rejected_non_finite += non_finite;
@@ -392,12 +435,12 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     out.variance_z_m2.assign(cells, kNanF);
     out.count.assign(cells, 0);
     const double y_min = -0.5 * ny * g;
-    auto put = [&](std::size_t k, const CellSums& c) {
-        if (c.n == 0) return;
+    auto put = [&](std::size_t k, const CellSums& c, uint32_t n) {
+        if (c.empty()) return;
         const CellStatistics s = cell_statistics(c, config_.statistics);
         out.mean_z_m[k] = static_cast<float>(s.mean_z_m);
         out.variance_z_m2[k] = static_cast<float>(s.variance_z_m2);
-        out.count[k] = static_cast<int32_t>(std::min<uint32_t>(c.n, 0x7fffffff));
+        out.count[k] = static_cast<int32_t>(std::min<uint32_t>(n, 0x7fffffff));
     };
     if (history_.empty()) {
         out.pose = Pose{};
@@ -420,7 +463,7 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         out.x_curr_m = ref.x();
         out.residual_yaw_rad = wrap_angle_rad(yaw - anchor_yaw_rad_);
         for (int i = 0; i < nx; ++i)
-            for (int j = 0; j < ny; ++j) put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j));
+            for (int j = 0; j < ny; ++j) put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->count(i, j));
         return;
     }
     // World-aligned: resample into the vehicle's heading at the reference point (nearest cell).
@@ -434,8 +477,8 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const Eigen::Vector2d local((i + 0.5) * g, y_min + (j + 0.5) * g);
-            const CellSums* c = world_->cell_at(ref + turn * local);
-            if (c) put(static_cast<std::size_t>(i * ny + j), *c);
+            const int c = world_->cell_at(ref + turn * local);
+            if (c >= 0) put(static_cast<std::size_t>(i * ny + j), world_->at(c), world_->count(c));
         }
     }
 }
@@ -453,20 +496,28 @@ CellStatistics TerrainMapper::statistics_at_body(double x_m, double y_m) const
         if (cell < 0) return {nan, nan};
         return cell_statistics(ego_->at(cell), config_.statistics);
     }
-    const CellSums* c = world_->cell_at(world);
-    if (!c) return {nan, nan};
-    return cell_statistics(*c, config_.statistics);
+    const int c = world_->cell_at(world);
+    if (c < 0) return {nan, nan};
+    return cell_statistics(world_->at(c), config_.statistics);
 }
 
-CellSums TerrainMapper::total() const
+MapTotals TerrainMapper::total() const
 {
-    CellSums sum;
+    MapTotals sum;
+    auto add = [&sum](const CellSums& c, uint32_t n) {
+        if (c.empty()) return;
+        double wz = 0.0, wz2 = 0.0;
+        z_sums_about(c, 0.0, wz, wz2);
+        sum.n += n;
+        sum.w += c.w;
+        sum.w_z += wz;
+    };
     if (ego_) {
         for (int i = 0; i < ego_->nx(); ++i)
-            for (int j = 0; j < ego_->ny(); ++j) add_sums(sum, ego_->at(i, j));
+            for (int j = 0; j < ego_->ny(); ++j) add(ego_->at(i, j), ego_->count(i, j));
     } else {
         const int n = world_->size();
-        for (int k = 0; k < n * n; ++k) add_sums(sum, world_->at(k));
+        for (int k = 0; k < n * n; ++k) add(world_->at(k), world_->count(k));
     }
     return sum;
 }

@@ -17,21 +17,20 @@ WorldGrid::WorldGrid(int n, double grid_size_m)
 
 void WorldGrid::clear()
 {
-    std::fill(cells_.begin(), cells_.end(), CellSums{});
+    cells_.clear();
     placed_ = false;
 }
 
 void WorldGrid::clear_row(int i)
 {
     const int r = (i + ring_i_) % n_;
-    const auto first = cells_.begin() + static_cast<std::ptrdiff_t>(r) * n_;
-    std::fill(first, first + n_, CellSums{});
+    cells_.clear(static_cast<std::size_t>(r) * static_cast<std::size_t>(n_), static_cast<std::size_t>(n_));
 }
 
 void WorldGrid::clear_column(int j)
 {
     const int c = (j + ring_j_) % n_;
-    for (int r = 0; r < n_; ++r) cells_[static_cast<std::size_t>(r * n_ + c)] = CellSums{};
+    for (int r = 0; r < n_; ++r) cells_.clear(static_cast<std::size_t>(r * n_ + c), 1);
 }
 
 static int wrap_mod(int64_t a, int n)
@@ -55,7 +54,7 @@ int WorldGrid::follow(const Eigen::Vector2d& centre_m)
     const int64_t di = want_i - corner_i_, dj = want_j - corner_j_;
     if (di == 0 && dj == 0) return 0;
     if (std::abs(di) >= n_ || std::abs(dj) >= n_) {
-        std::fill(cells_.begin(), cells_.end(), CellSums{});
+        cells_.clear();
     } else {
         // The rows that leave on one side are the ones that enter on the other: clear them
         // (in window coordinates of the old corner) before moving the corner.
@@ -69,12 +68,12 @@ int WorldGrid::follow(const Eigen::Vector2d& centre_m)
     return static_cast<int>(std::min<int64_t>(std::abs(di) + std::abs(dj), 1 << 30));
 }
 
-const CellSums* WorldGrid::cell_at(const Eigen::Vector2d& p_m) const
+int WorldGrid::cell_at(const Eigen::Vector2d& p_m) const
 {
     const double fx = (p_m.x() - static_cast<double>(corner_i_) * grid_m_) / grid_m_;
     const double fy = (p_m.y() - static_cast<double>(corner_j_) * grid_m_) / grid_m_;
-    if (!(fx >= 0.0 && fx < n_ && fy >= 0.0 && fy < n_)) return nullptr;
-    return &at(physical(static_cast<int>(fx), static_cast<int>(fy)));
+    if (!(fx >= 0.0 && fx < n_ && fy >= 0.0 && fy < n_)) return -1;
+    return physical(static_cast<int>(fx), static_cast<int>(fy));
 }
 
 }  // namespace ugv::terrain

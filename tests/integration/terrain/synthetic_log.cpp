@@ -18,7 +18,7 @@ double SyntheticDrive::height_at(double x, double y) const
 
 Eigen::Vector3d SyntheticDrive::pose_at(double t) const
 {
-    const double speed = 1.0, turn_rate = 0.3, turn_start = 3.0;
+    const double speed = 1.0, turn_rate = turn_rate_rad_s, turn_start = 3.0;
     if (t < turn_start) return {speed * t, 0.0, 0.0};
     const double yaw = turn_rate * (t - turn_start);
     return {turn_start + speed * std::sin(yaw) / turn_rate, speed * (1.0 - std::cos(yaw)) / turn_rate, yaw};
@@ -50,7 +50,8 @@ void SyntheticDrive::write_log(const std::string& path) const
 
 void SyntheticDrive::events(const std::function<void(const std::string&, int64_t, const std::vector<uint8_t>&)>& out) const
 {
-    const int64_t pose_period_us = 100'000, cloud_period_us = 40'000;
+    const int64_t pose_period_us = 100'000;
+    const int64_t cloud_step_us = cloud_period_us / static_cast<int64_t>(lasers.size());  // lasers in turn
     int64_t pose_seq = 0, cloud_seq = 0;
     int64_t next_pose = 0, next_cloud = 20'000;
     const int64_t end = static_cast<int64_t>(duration_s * 1e6);
@@ -72,19 +73,21 @@ void SyntheticDrive::events(const std::function<void(const std::string&, int64_t
             next_pose += pose_period_us;
         } else {
             // One line across the ground at a distance that nods from 2 to 14 m.
+            const std::string& laser = lasers[static_cast<std::size_t>(cloud_seq) % lasers.size()];
             const double distance = 2.0 + 0.4 * static_cast<double>(cloud_seq % 31);
             point_cloud_t m{};
             m.utime = start_utime + next_cloud;
             m.seq = cloud_seq++;
-            m.sensor_id = "front";
+            m.sensor_id = laser;
             m.sensor_origin[0] = 0.5;
             m.sensor_origin[2] = 0.87;
-            const int n = 121;
+            const int n = points_per_cloud;
+            const double spacing_m = 12.0 / (n - 1);  // exactly 0.1 for the default 121 points
             for (int k = 0; k < n; ++k) {
                 const double offset = 0.02 * k / (n - 1);
                 const Eigen::Vector3d pose = pose_at(static_cast<double>(next_cloud) * 1e-6 + offset);
                 const double c = std::cos(pose.z()), s = std::sin(pose.z());
-                const double bx = distance, by = -6.0 + 0.1 * k;
+                const double bx = distance, by = -6.0 + spacing_m * k;
                 const double wx = pose.x() + c * bx - s * by, wy = pose.y() + s * bx + c * by;
                 const double bz = height_at(wx, wy);
                 m.x.push_back(static_cast<float>(bx));
@@ -96,8 +99,8 @@ void SyntheticDrive::events(const std::function<void(const std::string&, int64_t
                 m.time_offset.push_back(static_cast<float>(offset));
             }
             m.npoints = n;
-            out("POINTS.front", m.utime, encoded(m));
-            next_cloud += cloud_period_us;
+            out("POINTS." + laser, m.utime, encoded(m));
+            next_cloud += cloud_step_us;
         }
     }
 }

@@ -1,6 +1,7 @@
-// A synthetic drive for the terrain daemon's tests: flat ground with one box, a vehicle that
-// drives straight for 3 s and then turns left while driving, POSE at 10 Hz and POINTS
-// (one nodding line of ground points per message) at 25 Hz, written as an LCM log.
+// A synthetic drive for the terrain daemon's tests and replay benchmark: flat ground with
+// one box, a vehicle that drives straight for 3 s and then turns left while driving, POSE
+// at 10 Hz and, per laser, POINTS.<name> (one nodding line of ground points per message;
+// 25 Hz x 121 points by default), written as an LCM log.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,10 @@ struct SyntheticDrive
     double box_height_m = 0.5;
     double orientation_sigma_rad = 0.3 * M_PI / 180.0;
     int64_t start_utime = 1'700'000'000'000'000;
+    double turn_rate_rad_s = 0.3;       // after the first 3 s
+    std::vector<std::string> lasers = {"front"};  // channel POINTS.<name>; the lasers scan in turn
+    int64_t cloud_period_us = 40'000;   // per laser
+    int points_per_cloud = 121;         // spread over 12 m across the vehicle
 
     double height_at(double x, double y) const;
     // Vehicle (body origin) pose at t seconds from the start: x, y, yaw.

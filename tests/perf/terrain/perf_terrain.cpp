@@ -110,8 +110,8 @@ EgocentricGrid full_grid()
         for (int j = 0; j < 150; ++j) {
             float xr = 0, yr = 0;
             const int cell = g.locate(static_cast<float>((i + 0.3) * 0.2), static_cast<float>(-15.0 + (j + 0.6) * 0.2), xr, yr);
-            fuse_sample(g.at(cell), xr, yr, 0.01 * i, 100.0f);
-            fuse_sample(g.at(cell), xr * 0.5f, yr, 0.01 * j, 50.0f);
+            g.fuse(cell, xr, yr, 0.01 * i, 100.0f);
+            g.fuse(cell, xr * 0.5f, yr, 0.01 * j, 50.0f);
         }
     }
     return g;

@@ -19,7 +19,10 @@ TEST_CASE("eq. 23 and 32: (z=1, s2=1) fused with (z=3, s2=3)")
     const CellStatistics s = cell_statistics(c, StatisticsKind::variance_weighted);
     CHECK(s.mean_z_m == Approx(1.5).epsilon(1e-7));
     CHECK(s.variance_z_m2 == Approx(0.75).epsilon(1e-6));
-    CHECK(c.n == 2);
+    CHECK(c.w == Approx(4.0 / 3.0));
+    CHECK(c.z_ref_m == 1.0f);  // the first sample's height
+    CHECK(c.z_wz == Approx(2.0 / 3.0));  // (3 - 1) / 3
+    CHECK(c.z_wz2 == Approx(4.0 / 3.0));  // (3 - 1)^2 / 3
 }
 
 TEST_CASE("eq. 21 and 22: classical statistics fuse with unit weight")
@@ -66,23 +69,29 @@ TEST_CASE("the x and y sums give the remainder (mean offset from the cell centre
     CHECK(y_re == Approx(-0.05f));
 }
 
-TEST_CASE("add_sums adds every one of the ten sums")
+TEST_CASE("add_sums adds every sum, z re-expressed about the first cell's reference")
 {
     CellSums a, b;
     fuse_sample(a, 0.1f, 0.2f, 1.0, 2.0f);
     fuse_sample(b, -0.1f, 0.05f, 3.0, 0.5f);
     CellSums sum = a;
     add_sums(sum, b);
-    CHECK(sum.n == 2);
-    CHECK(sum.z_w == Approx(2.5));
-    CHECK(sum.z_wz == Approx(2.0 + 1.5));
-    CHECK(sum.z_wz2 == Approx(2.0 + 4.5));
-    CHECK(sum.x_w == Approx(2.5f));
+    CHECK(sum.z_ref_m == 1.0f);
+    CHECK(sum.w == Approx(2.5));
+    CHECK(sum.z_wz == Approx(0.5 * 2.0));  // b's z is 2 m above a's reference
+    CHECK(sum.z_wz2 == Approx(0.5 * 4.0));
+    double wz = 0.0, wz2 = 0.0;
+    z_sums_about(sum, 0.0, wz, wz2);  // ENU heights: 2 * 1 + 0.5 * 3, 2 * 1 + 0.5 * 9
+    CHECK(wz == Approx(2.0 + 1.5));
+    CHECK(wz2 == Approx(2.0 + 4.5));
     CHECK(sum.x_wx == Approx(0.2f - 0.05f));
     CHECK(sum.x_wx2 == Approx(0.02f + 0.005f));
-    CHECK(sum.y_w == Approx(2.5f));
     CHECK(sum.y_wy == Approx(0.4f + 0.025f));
     CHECK(sum.y_wy2 == Approx(0.08f + 0.00125f));
+    CellSums empty;
+    add_sums(empty, b);  // into an empty cell: a copy
+    CHECK(empty.z_ref_m == 3.0f);
+    CHECK(empty.w == 0.5f);
 }
 
 TEST_CASE("eq. 19-20: variance = sensor part + 2 (r de)^2")

@@ -213,7 +213,7 @@ TEST_CASE("NaN points and NaN poses never reach a cell")
     CHECK(m.fuse(q.batch(0)) == 0);
     CHECK(m.counters().rejected_non_finite == 8);
     CHECK(m.total().n == 0);
-    CHECK(m.total().z_w == 0.0);
+    CHECK(m.total().w == 0.0);
     MapSnapshot s;
     m.snapshot(s);
     CHECK(known_cells(s) == 0);
@@ -265,7 +265,7 @@ TEST_CASE("eq. 19: the orientation error comes from the pose covariance at the p
     p.add(3.0f, 0.1f, 0.5f, 0.001f, 0.05f, 5.0f);  // r = 5 m at 50 ms: de^2 = 6e-4 rad^2
     REQUIRE(m.fuse(p.batch(0)) == 1);
     // s2 = 0.001 + 2 * 25 * 6e-4 = 0.031 m^2; weight 1/0.031.
-    CHECK(m.total().z_w == Approx(1.0 / 0.031).epsilon(1e-5));
+    CHECK(m.total().w == Approx(1.0 / 0.031).epsilon(1e-5));
 }
 
 TEST_CASE("section 3.5: spreading conserves total weight")
@@ -281,9 +281,9 @@ TEST_CASE("section 3.5: spreading conserves total weight")
     p.add(20.05f, 1.05f, 3.0f, 4.0f);    // sigma 2 m: capped at 2 cells each way
     REQUIRE(m.fuse(p.batch(0)) == 3);
     CHECK(m.counters().points_spread == 2);
-    const CellSums total = m.total();
-    CHECK(total.z_w == Approx(1.0 / 0.09 + 1.0 / 0.01 + 1.0 / 4.0).epsilon(1e-5));
-    CHECK(total.z_wz == Approx(2.0 / 0.09 + 1.0 / 0.01 + 3.0 / 4.0).epsilon(1e-5));
+    const MapTotals total = m.total();
+    CHECK(total.w == Approx(1.0 / 0.09 + 1.0 / 0.01 + 1.0 / 4.0).epsilon(1e-5));
+    CHECK(total.w_z == Approx(2.0 / 0.09 + 1.0 / 0.01 + 3.0 / 4.0).epsilon(1e-5));
     MapSnapshot s;
     m.snapshot(s);
     // 10.53 +/- 0.3 m from the rear bumper spans rows 51-54, 0.07 +/- 0.3 columns 73-76: 4 x 4;
@@ -303,7 +303,7 @@ TEST_CASE("spreading conserves total weight at the map's edge and in the world-a
     Points p;
     p.add(5.0f, 0.0f, 1.0f, 0.16f);
     REQUIRE(m.fuse(p.batch(0)) == 1);
-    CHECK(m.total().z_w == Approx(1.0 / 0.16).epsilon(1e-5));
+    CHECK(m.total().w == Approx(1.0 / 0.16).epsilon(1e-5));
 }
 
 TEST_CASE("classical and variance-weighted statistics differ as eq. 21 vs 23 say")

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ugv/terrain/cell_sums.hpp"
+#include "ugv/terrain/cell_array.hpp"
 
 namespace ugv::terrain {
 
@@ -36,16 +36,18 @@ public:
         y_rel_m = y_m - centre_y_m_[j];
         return physical(i, j);
     }
-    // Cell index of unwrapped (row i, column j) (eq. 6).
+    // Cell index of unwrapped (row i, column j) (eq. 6). Branch-free: it is in the fusion loop.
     int physical(int i, int j) const
     {
-        int r = i + m_i_;
-        if (r >= nx_) r -= nx_;
-        return r * ny_ + j;
+        const int r = i + m_i_;
+        return (r - nx_ * (r >= nx_)) * ny_ + j;
     }
-    CellSums& at(int cell) { return cells_[static_cast<std::size_t>(cell)]; }
-    const CellSums& at(int cell) const { return cells_[static_cast<std::size_t>(cell)]; }
+    const CellSums& at(int cell) const { return cells_.sums(cell); }
     const CellSums& at(int i, int j) const { return at(physical(i, j)); }
+    uint32_t count(int cell) const { return cells_.count(cell); }
+    uint32_t count(int i, int j) const { return count(physical(i, j)); }
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
+    CellArray& cells() { return cells_; }
     // Eq. 17-18: the cell centres, precomputed.
     float centre_x_m(int i) const { return centre_x_m_[static_cast<std::size_t>(i)]; }
     float centre_y_m(int j) const { return centre_y_m_[static_cast<std::size_t>(j)]; }
@@ -71,7 +73,15 @@ private:
     float inv_g_, y_min_f_, nx_f_, ny_f_;
     int m_i_ = 0;
     std::vector<float> centre_x_m_, centre_y_m_;
-    std::vector<CellSums> cells_, working_;
+    CellArray cells_, working_;
+    // Scratch of transform(), one row long (allocated once): each cell of the row as it
+    // will be in the working map, and where it goes.
+    struct MovedRow
+    {
+        std::vector<CellSums> cells;
+        std::vector<int32_t> to;
+        std::vector<float> centre_y;  // cell centres' y minus the pivot's
+    } moved_;
 };
 
 }  // namespace ugv::terrain

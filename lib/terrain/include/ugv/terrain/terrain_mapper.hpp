@@ -17,6 +17,10 @@
 
 namespace ugv::terrain {
 
+namespace detail {
+struct PlacedPoints;  // the fusion loop's scratch (src/fusion_kernels.hpp)
+}
+
 // One batch of points in the body frame (a view; the arrays hold count values each).
 struct PointBatch
 {
@@ -66,11 +70,22 @@ struct MapSnapshot
     std::vector<int32_t> count;
 };
 
+// Sums over every cell, ENU heights (for tests of conservation).
+struct MapTotals
+{
+    uint64_t n = 0;    // samples (a spread point counts in every cell it touches)
+    double w = 0.0;    // sum 1/s^2
+    double w_z = 0.0;  // sum z/s^2
+};
+
 class TerrainMapper
 {
 public:
     // Throws std::invalid_argument for an invalid configuration.
     explicit TerrainMapper(const MapConfig& config);
+    ~TerrainMapper();
+    TerrainMapper(TerrainMapper&&) noexcept;
+    TerrainMapper& operator=(TerrainMapper&&) noexcept;
 
     const MapConfig& config() const { return config_; }
     const MapCounters& counters() const { return counters_; }
@@ -88,7 +103,7 @@ public:
     // or outside (for tests and evaluation).
     CellStatistics statistics_at_body(double x_m, double y_m) const;
     // The sums of all cells (total weight, for tests of conservation).
-    CellSums total() const;
+    MapTotals total() const;
 
     void clear();
 
@@ -113,6 +128,7 @@ private:
     bool anchored_ = false;
     Eigen::Vector2d anchor_m_{0, 0};  // egocentric: ENU of the local frame's origin
     double anchor_yaw_rad_ = 0.0;     // egocentric: ENU yaw of the local X axis
+    std::unique_ptr<detail::PlacedPoints> placed_;  // allocated once: fuse() allocates nothing
 };
 
 }  // namespace ugv::terrain

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "ugv/terrain/cell_sums.hpp"
+#include "ugv/terrain/cell_array.hpp"
 
 namespace ugv::terrain {
 
@@ -19,6 +19,9 @@ public:
     WorldGrid(int n, double grid_size_m);
 
     int size() const { return n_; }
+    // Physical row and column of the window's corner (the ring offsets).
+    int ring_row() const { return ring_i_; }
+    int ring_column() const { return ring_j_; }
     int nx() const { return n_; }
     int ny() const { return n_; }
     double y_min_m() const { return 0.0; }
@@ -42,19 +45,19 @@ public:
         y_rel_m = y_m - (static_cast<float>(j) + 0.5f) * g_f_;
         return physical(i, j);
     }
-    // Cell index of window-relative (i east, j north).
+    // Cell index of window-relative (i east, j north). Branch-free: it is in the fusion loop.
     int physical(int i, int j) const
     {
-        int r = i + ring_i_;
-        if (r >= n_) r -= n_;
-        int c = j + ring_j_;
-        if (c >= n_) c -= n_;
-        return r * n_ + c;
+        const int r = i + ring_i_;
+        const int c = j + ring_j_;
+        return (r - n_ * (r >= n_)) * n_ + (c - n_ * (c >= n_));
     }
-    CellSums& at(int cell) { return cells_[static_cast<std::size_t>(cell)]; }
-    const CellSums& at(int cell) const { return cells_[static_cast<std::size_t>(cell)]; }
-    // The cell holding ENU position p (m), or nullptr outside the window.
-    const CellSums* cell_at(const Eigen::Vector2d& p_m) const;
+    const CellSums& at(int cell) const { return cells_.sums(cell); }
+    uint32_t count(int cell) const { return cells_.count(cell); }
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
+    CellArray& cells() { return cells_; }
+    // The cell holding ENU position p (m), or -1 outside the window.
+    int cell_at(const Eigen::Vector2d& p_m) const;
 
     void clear();
 
@@ -68,7 +71,7 @@ private:
     bool placed_ = false;
     int64_t corner_i_ = 0, corner_j_ = 0;  // world cell index of the window's corner
     int ring_i_ = 0, ring_j_ = 0;          // physical row/column of the corner
-    std::vector<CellSums> cells_;
+    CellArray cells_;
 };
 
 }  // namespace ugv::terrain

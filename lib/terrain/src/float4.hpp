@@ -1,0 +1,72 @@
+// 4-float vectors for the hot loops (GCC/Clang vector extensions: SSE on x86-64 without
+// -march, NEON on ARM, scalar code elsewhere). Private to the library.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+namespace ugv::terrain::detail {
+
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+
+inline Float4 load4(const float* p)
+{
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+inline void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
+inline void store4(int32_t* p, Int4 v) { std::memcpy(p, &v, sizeof v); }
+
+inline Float4 splat(float v) { return Float4{v, v, v, v}; }
+
+// a < b ? a : b and a > b ? a : b per lane (b where either is NaN). One instruction on x86:
+// without -ffast-math the compiler does not turn the selects into minps/maxps itself.
+inline Float4 min4(Float4 a, Float4 b)
+{
+#if defined(__SSE__)
+    return Float4(_mm_min_ps(__m128(a), __m128(b)));
+#else
+    return a < b ? a : b;
+#endif
+}
+
+inline Float4 max4(Float4 a, Float4 b)
+{
+#if defined(__SSE__)
+    return Float4(_mm_max_ps(__m128(a), __m128(b)));
+#else
+    return a > b ? a : b;
+#endif
+}
+
+// True when every lane of the mask is set (-1).
+inline bool all_lanes(Int4 mask)
+{
+#if defined(__SSE__)
+    return _mm_movemask_ps(__m128(mask)) == 0xf;
+#else
+    return (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
+#endif
+}
+
+// The 4x4 transpose: rows a, b, c, d in, columns out (in place).
+inline void transpose4(Float4& a, Float4& b, Float4& c, Float4& d)
+{
+    const Float4 ab_lo = __builtin_shufflevector(a, b, 0, 4, 1, 5);  // a0 b0 a1 b1
+    const Float4 ab_hi = __builtin_shufflevector(a, b, 2, 6, 3, 7);  // a2 b2 a3 b3
+    const Float4 cd_lo = __builtin_shufflevector(c, d, 0, 4, 1, 5);
+    const Float4 cd_hi = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+    a = __builtin_shufflevector(ab_lo, cd_lo, 0, 1, 4, 5);
+    b = __builtin_shufflevector(ab_lo, cd_lo, 2, 3, 6, 7);
+    c = __builtin_shufflevector(ab_hi, cd_hi, 0, 1, 4, 5);
+    d = __builtin_shufflevector(ab_hi, cd_hi, 2, 3, 6, 7);
+}
+
+}  // namespace ugv::terrain::detail

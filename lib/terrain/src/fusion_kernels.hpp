@@ -1,0 +1,153 @@
+// The fusion loop's inner parts, written with 4-float vectors (GCC/Clang vector extensions:
+// SSE on x86-64 without -march, NEON on ARM, scalar code elsewhere). Private to the library.
+//
+// place_points: a group of 4 points from the body frame into the map (the end transforms
+//   of the scan blended at each point's time), eq. 19 variance, weight, cell, offset from
+//   the cell centre, and what to do with each point; no branch.
+// fuse_point_into: one sample into one cell, exactly what fuse_sample does, as two vector
+//   adds on the cell's two halves.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "float4.hpp"
+#include "ugv/terrain/cell_sums.hpp"
+
+namespace ugv::terrain::detail {
+
+// The smallest and largest value of v[0 .. n-1], NaN skipped (an infinity is kept, so a
+// batch with one makes an infinite span). A scalar loop does not vectorise: without
+// -ffast-math float min/max is not reassociated.
+inline void value_range(const float* v, std::size_t n, float& lo, float& hi)
+{
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    Float4 lo4 = splat(inf), hi4 = splat(-inf);
+    std::size_t k = 0;
+    for (; k + 4 <= n; k += 4) {
+        const Float4 t = load4(v + k);
+        lo4 = min4(t, lo4);  // NaN in t: lo4 stays
+        hi4 = max4(t, hi4);
+    }
+    for (; k < n; ++k) {
+        lo4[0] = std::min(lo4[0], v[k]);  // NaN in v[k]: lo4 stays (std::min returns its first argument)
+        hi4[0] = std::max(hi4[0], v[k]);
+    }
+    lo = std::min(std::min(lo4[0], lo4[1]), std::min(lo4[2], lo4[3]));
+    hi = std::max(std::max(hi4[0], hi4[1]), std::max(hi4[2], hi4[3]));
+}
+
+
+// Everything place_points needs, broadcast once per batch.
+struct Placement
+{
+    // Body -> map for the scan: row r of the transform at time fraction f is
+    // (at_start[4r + c] + f * change[4r + c]) for the x, y, z coefficients c = 0..2 and the
+    // offset c = 3; row 2 gives the ENU height.
+    Float4 at_start[12], change[12];
+    Float4 t_min_s, inv_span_per_s;            // f = (t - t_min) * inv_span
+    Float4 error_at_start_rad2, error_change_rad2;  // eq. 19's de^2, blended like the transform
+    Float4 min_variance_m2, inverse_scale, unit_weight;  // w = inverse_scale / s2 + unit_weight
+    Float4 spread_above_m2;                    // s2 above this: spread (section 3.5)
+    Float4 inv_g, g, y_min_m, nx, ny, nx_last, ny_last;
+    Float4 row_shift, column_shift;            // the grid's ring offsets, in cells
+    Float4 ring_rows, ring_columns;            // cells around each ring
+    Float4 row_stride;                         // cells per physical row
+};
+
+// Per point of a chunk: where it goes and with what.
+struct PlacedPoints
+{
+    static constexpr std::size_t kCapacity = 64;
+    alignas(16) float lx[kCapacity], ly[kCapacity], lz[kCapacity];  // map frame (m), ENU height
+    alignas(16) float variance_m2[kCapacity], weight[kCapacity];
+    alignas(16) int32_t cell[kCapacity], fuse[kCapacity];  // fuse: -1 for a plain point, 0 for a rare one
+    int32_t all_fuse[kCapacity / 4];  // per group of four: every point is a plain one
+    alignas(16) float sample[kCapacity][4];  // {0, x from the cell centre, y from it, z}: fuse_point_into's input
+};
+
+// Points first .. first+3 of the six input arrays (lanes beyond count are padding).
+// kColumnRing: the grid's columns are a ring too (the world-aligned grid).
+template <bool kColumnRing>
+inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float4 r, Float4 v, Float4 t,
+                         PlacedPoints& out, std::size_t first)
+{
+    const Float4 f = (t - p.t_min_s) * p.inv_span_per_s;
+    Float4 l[3];
+    for (int row = 0; row < 3; ++row) {
+        const Float4* a = p.at_start + 4 * row;
+        const Float4* d = p.change + 4 * row;
+        l[row] = (a[0] + f * d[0]) * x + (a[1] + f * d[1]) * y + (a[2] + f * d[2]) * z + (a[3] + f * d[3]);
+    }
+    const Float4 raw = v + 2.0f * r * r * (p.error_at_start_rad2 + f * p.error_change_rad2);  // eq. 19-20
+    // A NaN or infinity in any input leaves one in the position or the variance (x * 0 is
+    // NaN for an infinite x, and inf - inf is NaN): checking the results checks the inputs.
+    // x and y are checked by `inside` (false for NaN); the rare path finds out which reason.
+    const Int4 valid = ((l[2] * 0.0f + raw * 0.0f) == 0.0f) & (v >= 0.0f);
+    const Float4 variance = max4(raw, p.min_variance_m2);
+    const Float4 w = p.inverse_scale / variance + p.unit_weight;
+    // Eq. 5-7: the cell (unwrapped i, j), clamped so that the conversion is defined for any value.
+    const Float4 fx = l[0] * p.inv_g;
+    const Float4 fy = (l[1] - p.y_min_m) * p.inv_g;
+    const Int4 inside = (fx >= 0.0f) & (fx < p.nx) & (fy >= 0.0f) & (fy < p.ny);
+    const Float4 zero = splat(0.0f);
+    const Float4 i = __builtin_convertvector(__builtin_convertvector(min4(max4(fx, zero), p.nx_last), Int4), Float4);
+    const Float4 j = __builtin_convertvector(__builtin_convertvector(min4(max4(fy, zero), p.ny_last), Int4), Float4);
+    const Float4 x_rel = l[0] - (i + 0.5f) * p.g;
+    const Float4 y_rel = l[1] - p.y_min_m - (j + 0.5f) * p.g;
+    // Eq. 6 (and the world ring's columns): physical = ((i + shift) mod rows) * stride + ...,
+    // in float (exact below 2^24 cells; a grid has at most 2^20).
+    Float4 row = i + p.row_shift;
+    row = row >= p.ring_rows ? row - p.ring_rows : row;
+    Float4 column = j;
+    if constexpr (kColumnRing) {
+        column = column + p.column_shift;
+        column = column >= p.ring_columns ? column - p.ring_columns : column;
+    }
+    const Int4 cell = __builtin_convertvector(row * p.row_stride + column, Int4);
+    // -1: fused here; 0: a rare point (invalid, outside or spread), sorted out by the caller.
+    const Int4 fuse = valid & inside & (variance <= p.spread_above_m2);
+    store4(out.lx + first, l[0]);
+    store4(out.ly + first, l[1]);
+    store4(out.lz + first, l[2]);
+    store4(out.variance_m2 + first, variance);
+    store4(out.weight + first, w);
+    store4(out.cell + first, cell);
+    store4(out.fuse + first, fuse);
+    out.all_fuse[first / 4] = all_lanes(fuse);
+    // Transposed to one {0, x_rel, y_rel, z} per point.
+    Float4 s0 = zero, s1 = x_rel, s2 = y_rel, s3 = l[2];
+    transpose4(s0, s1, s2, s3);
+    store4(out.sample[first + 0], s0);
+    store4(out.sample[first + 1], s1);
+    store4(out.sample[first + 2], s2);
+    store4(out.sample[first + 3], s3);
+}
+
+// The cell's layout as two vectors: {w, x_wx, y_wy, z_wz} and {z_ref_m, x_wx2, y_wy2, z_wz2}.
+static_assert(offsetof(CellSums, x_wx) == 4 && offsetof(CellSums, y_wy) == 8 && offsetof(CellSums, z_wz) == 12);
+static_assert(offsetof(CellSums, z_ref_m) == 16 && offsetof(CellSums, x_wx2) == 20 &&
+              offsetof(CellSums, y_wy2) == 24 && offsetof(CellSums, z_wz2) == 28);
+
+// sample = {0, x_rel_m, y_rel_m, z_m}. The reference check comes first, on scalars, so that
+// no vector is live across the (rare) call.
+inline void fuse_point_into(CellSums& cell, uint32_t& count, const float* sample, float w)
+{
+    if (!(w <= cell.w)) move_reference(cell, sample[3]);  // empty (w is NaN), or w outweighs the cell: see fuse_sample
+    Float4 sums, squares;
+    std::memcpy(&sums, &cell.w, sizeof sums);
+    std::memcpy(&squares, &cell.z_ref_m, sizeof squares);
+    const Float4 reference = __builtin_shufflevector(squares, Float4{}, 4, 4, 4, 0);  // {0, 0, 0, z_ref}
+    const Float4 d = load4(sample) - reference;  // loaded after the call: nothing vector is live across it                                       // {0, x, y, dz}
+    const Float4 weighted = (d + Float4{1.0f, 0.0f, 0.0f, 0.0f}) * w;                 // {w, wx, wy, w dz}
+    sums += weighted;
+    squares += weighted * d;  // {+0: z_ref stays, w x^2, w y^2, w dz^2}
+    std::memcpy(&cell.w, &sums, sizeof sums);
+    std::memcpy(&cell.z_ref_m, &squares, sizeof squares);
+    ++count;
+}
+
+}  // namespace ugv::terrain::detail
