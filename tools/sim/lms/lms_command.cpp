@@ -152,11 +152,7 @@ int lms_main(int argc, char** argv)
     options.initially_streaming = streaming;
     options.password = password;
 
-    struct sigaction sa{};
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-    std::signal(SIGPIPE, SIG_IGN);
+    ugv::sim::install_stop_handler(on_signal);
     try {
         while (serve(path, options, plan, verbose)) {
             // Unplugged: gone for a while, then a freshly powered device appears.

@@ -163,11 +163,7 @@ int world_main(int argc, char** argv)
         text = ss.str();
         name = scenario_path;
     }
-    struct sigaction sa{};
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-    std::signal(SIGPIPE, SIG_IGN);
+    ugv::sim::install_stop_handler(on_signal);
     try {
         return run(dir, text, name, url, duration_s, seed);
     } catch (const ugv::runtime::ConfigError& e) {
