@@ -220,7 +220,7 @@ depth_m = 0.3
 start = [0.0, 0.0]
 start_yaw_deg = 0.0      # east
 accel_mps2 = 1.0
-hold_s = 5.0
+hold_s = 15.0            # standing in front of the wall (figure 18)
 
 [[segment]]              # the stack starts, the laser handshakes, the GPS fixes
 kind = "stop"
