@@ -21,7 +21,7 @@ int main(int argc, char** argv)
     const char* names[] = {"poses",        "gps_used",      "gps_rejected",      "gps_low_quality", "gps_resets",
                            "velocity_used", "velocity_rejected", "course_used", "course_rejected", "imu_used",
                            "imu_rejected", "late",          "reordered",         "outages",         "non_finite",
-                           "filter_resets"};
+                           "filter_resets", "duplicates"};
     for (const char* n : names) c[n] = 0;
     const auto sync_counters = [&] {
         const estimation::EstimatorCounters& n = estimator.counters();
@@ -38,6 +38,7 @@ int main(int argc, char** argv)
         c["imu_rejected"] = n.imu_rejected;
         c["late"] = n.late;
         c["reordered"] = n.reordered;
+        c["duplicates"] = n.duplicates;
         c["outages"] = n.outages;
         c["non_finite"] = n.non_finite;
         c["filter_resets"] = n.filter_resets;

@@ -22,7 +22,7 @@ int main(int argc, char** argv)
                            "rejected_before_history", "rejected_after_history", "rejected_no_pose",
                            "rejected_outside_map", "poses_in",              "poses_rejected_non_finite",
                            "poses_rejected_out_of_order", "poses_rejected_status", "clouds_in",
-                           "clouds_malformed",     "wraps",                 "rotations",
+                           "clouds_malformed",     "clouds_duplicate",      "wraps",                 "rotations",
                            "recentres",            "resets",                "maps_published",
                            "publish_time_us"};
     for (const char* n : names) c[n] = 0;
@@ -51,6 +51,7 @@ int main(int argc, char** argv)
         c["poses_rejected_status"] = static_cast<int64_t>(n.poses_rejected_status);
         c["clouds_in"] = static_cast<int64_t>(n.clouds_in);
         c["clouds_malformed"] = static_cast<int64_t>(n.clouds_malformed);
+        c["clouds_duplicate"] = static_cast<int64_t>(n.clouds_duplicate);
         c["wraps"] = static_cast<int64_t>(m.wraps);
         c["rotations"] = static_cast<int64_t>(m.rotations);
         c["recentres"] = static_cast<int64_t>(m.recentres);

@@ -47,6 +47,16 @@ void TerrainNode::on_pose(const pose_t& msg)
 void TerrainNode::on_points(const point_cloud_t& msg)
 {
     ++counters_.clouds_in;
+    // The same cloud delivered twice (a re-sent or looped-back message) would be fused twice,
+    // doubling its points' weight in every cell it touches.
+    const auto [last, first_of_sensor] = last_cloud_utime_.try_emplace(msg.sensor_id, msg.utime);
+    if (!first_of_sensor) {
+        if (last->second == msg.utime) {
+            ++counters_.clouds_duplicate;
+            return;
+        }
+        last->second = msg.utime;
+    }
     waiting_.push_back(msg);
     fuse_ready(false);
     maybe_publish(msg.utime);

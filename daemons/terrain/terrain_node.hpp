@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
+#include <string>
 
 #include <ugv/point_cloud_t.hpp>
 #include <ugv/pose_t.hpp>
@@ -23,6 +25,7 @@ struct NodeCounters
     uint64_t poses_rejected_status = 0;  // INITIALIZING or FAULT
     uint64_t clouds_in = 0;
     uint64_t clouds_malformed = 0;       // array sizes disagree with npoints
+    uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
 };
@@ -53,6 +56,7 @@ private:
     std::function<int64_t()> now_us_;
     NodeCounters counters_;
     std::deque<point_cloud_t> waiting_;
+    std::map<std::string, int64_t> last_cloud_utime_;  // by sensor_id
     pose_t last_pose_{};
     bool have_pose_ = false;
     int64_t period_us_;

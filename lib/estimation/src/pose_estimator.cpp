@@ -1,6 +1,7 @@
 #include "ugv/estimation/pose_estimator.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -122,6 +123,15 @@ void PoseEstimator::enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVe
         return a.arrival < b.arrival;
     };
     const auto pos = std::upper_bound(buffer_.begin(), buffer_.end(), e, before);
+    // A second input of the same kind with the same measurement time is the same measurement
+    // delivered twice (a re-sent or looped-back message): applying it again would count its
+    // information twice and make the covariance overconfident.
+    const bool buffered_twin =
+        pos != buffer_.begin() && std::prev(pos)->utime == utime && std::prev(pos)->data.index() == e.data.index();
+    if (buffered_twin || applied_utime_by_kind_[e.data.index()] == utime) {
+        ++counters_.duplicates;
+        return;
+    }
     if (pos != buffer_.end()) {
         ++counters_.reordered;
     }
@@ -142,6 +152,7 @@ void PoseEstimator::release(int64_t up_to_utime)
 void PoseEstimator::apply(const Event& e)
 {
     applied_utime_ = e.utime;
+    applied_utime_by_kind_[e.data.index()] = e.utime;
     if (initialized_) {
         advance_to(e.utime);
     }

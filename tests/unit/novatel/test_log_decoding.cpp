@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "capture_file.hpp"
@@ -237,4 +238,61 @@ TEST_CASE("replies and prompts come out as Reply")
     CHECK(replies[1].text == "[COM1]");
     CHECK(replies[1].kind == FrameKind::prompt);
     CHECK(replies[2].text == "ERROR:Invalid Message ID");
+}
+
+// Found by fuzz_gps_stream / fuzz_gps_frame: frames with a valid checksum but impossible
+// content (NMEA's 8-bit checksum passes 1 corrupted sentence in 256; a binary double can hold
+// anything) came out as fixes at latitude 401 deg or 3e35 deg, with -1077536624 satellites,
+// or overflowed the time stamp (signed overflow, UB) with a latency of 1e30 s or week 4e9.
+TEST_CASE("decoder: a checksummed frame with impossible values is malformed, not a fix")
+{
+    Position p;
+    p.latitude_deg = 29.44;
+    p.longitude_deg = -98.61;
+    p.height_msl_m = 259.6;
+    LogHeader h;
+    h.id = log_id::bestpos;
+    Position off_globe = p;
+    off_globe.latitude_deg = 401.57;
+    Position infinite_height = p;
+    infinite_height.height_msl_m = INFINITY;
+    Position many_satellites = p;
+    many_satellites.satellites_tracked = 100000;
+    Velocity infinite_speed;
+    infinite_speed.horizontal_speed_mps = -INFINITY;
+    Velocity negative_latency;
+    negative_latency.latency_s = -0.5;
+    Velocity huge_latency;
+    huge_latency.latency_s = 1e30;
+    LogHeader huge_week = h;
+    huge_week.week = 4'000'000'000u;
+    LogHeader hv;
+    hv.id = log_id::bestvel;
+
+    std::vector<uint8_t> data;
+    const auto append = [&](const std::vector<uint8_t>& frame) { data.insert(data.end(), frame.begin(), frame.end()); };
+    const auto append_text = [&](const std::string& frame) { data.insert(data.end(), frame.begin(), frame.end()); };
+    append(encode_binary(h, encode_position_body(off_globe)));
+    append(encode_binary(h, encode_position_body(infinite_height)));
+    append_text(encode_ascii("BESTPOSA", h, position_fields(many_satellites)));  // binary has 1 byte for it
+    append(encode_binary(hv, encode_velocity_body(infinite_speed)));
+    append(encode_binary(hv, encode_velocity_body(negative_latency)));
+    append(encode_binary(hv, encode_velocity_body(huge_latency)));
+    append_text(encode_ascii("BESTPOSA", huge_week, position_fields(p)));
+    // 40134.5749 = 401 deg 34.57 min; longitude 19000.0 = 190 deg.
+    append_text(encode_nmea("GPGGA,120000.00,40134.5749,N,09345.0343,W,1,10,0.9,246.7,M,-31.4,M,,"));
+    append_text(encode_nmea("GPRMC,120000.00,A,4013.4575,N,19000.0000,E,0.0,0.0,010120,,,A"));
+    append(encode_binary(h, encode_position_body(p)));  // the one good frame
+
+    Decoder d;
+    std::vector<Position> positions;
+    int others = 0;
+    d.feed(data.data(), data.size(), 0, [&](const Decoded& m) {
+        if (const auto* v = std::get_if<Position>(&m.message)) positions.push_back(*v);
+        else ++others;
+    });
+    CHECK(d.counters().malformed == 9);
+    CHECK(others == 0);
+    REQUIRE(positions.size() == 1);
+    CHECK_THAT(positions[0].latitude_deg, WithinAbs(29.44, 1e-9));
 }

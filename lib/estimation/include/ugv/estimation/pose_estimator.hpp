@@ -10,6 +10,7 @@
 // filter passes, by predicting to exactly that time.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -100,6 +101,7 @@ struct EstimatorCounters
     int64_t imu_rejected = 0;       // orientation failed the gate
     int64_t late = 0;               // older than what was already applied
     int64_t reordered = 0;          // arrived out of order but within the buffer
+    int64_t duplicates = 0;         // same kind and utime as one buffered or last applied: dropped
     int64_t outages = 0;            // GPS outages started
     int64_t non_finite = 0;         // refused by input_checks
     int64_t filter_resets = 0;      // the filter went non-finite and restarted
@@ -156,6 +158,7 @@ private:
     uint64_t arrivals_ = 0;
     int64_t newest_utime_ = 0;
     int64_t applied_utime_ = 0;  // utime of the last applied event
+    std::array<int64_t, 3> applied_utime_by_kind_{};  // the same, per Event::data index
     int64_t filter_utime_ = 0;   // time the filter state is valid at
     int64_t next_output_utime_ = 0;
     bool initialized_ = false;
