@@ -1,7 +1,9 @@
 // ugv-eval: terrain maps against ground truth.
-//   ugv-eval compare LOG [--flat Z] [--box X0,Y0,X1,Y1,H ...] [--all]
-//       the maps of a log (the last, or all) against a height field: RMSE, bias, coverage,
-//       obstacle detection.
+//   ugv-eval compare LOG [--truth FILE | --flat Z [--box X0,Y0,X1,Y1,H ...]] [--all]
+//       the maps of a log (the last, or all) against a height field (ugv-sim world's
+//       truth.hf, or a flat floor with boxes): RMSE, bias, coverage, obstacle detection.
+//   ugv-eval diff A.lcm B.lcm [--pair time|last] [--max-dz M] [--max-one-sided F] [--all]
+//       the maps of two logs against each other (map_diff.hpp).
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
@@ -9,12 +11,18 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <ugv/terrain_map_t.hpp>
 
 #include "floor_study.hpp"
+#include "ugv/simworld/height_field.hpp"
+#include "map_diff.hpp"
 
 using namespace ugv;
 using namespace ugv::terrain;
@@ -45,20 +53,16 @@ struct Box
     double x0, y0, x1, y1, h;
 };
 
-int compare(const std::string& path, const std::string& channel, double flat, const std::vector<Box>& boxes,
-            double obstacle_height, bool all)
+using HeightFn = std::function<double(double x_m, double y_m)>;
+
+int compare(const std::string& path, const std::string& channel, const HeightFn& truth, double obstacle_height,
+            bool all)
 {
     lcm::LogFile log(path, "r");
     if (!log.good()) {
         std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", path.c_str());
         return 2;
     }
-    auto truth = [&](double x, double y) {
-        double z = flat;
-        for (const Box& b : boxes)
-            if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) z = std::max(z, b.h);
-        return z;
-    };
     terrain_map_t m;
     std::vector<uint8_t> last;
     int maps = 0;
@@ -158,6 +162,13 @@ int main(int argc, char** argv)
     bool all = false;
     cmp->add_option("log", log_path, "LCM log with terrain_map_t")->required()->check(CLI::ExistingFile);
     cmp->add_option("--channel", channel, "channel of the maps");
+    std::string truth_path;
+    cmp->add_option("--truth", truth_path, "truth height field (ugv-sim world's truth.hf)")->check(CLI::ExistingFile);
+    double edge_margin = 0.0;
+    cmp->add_option("--exclude-edges", edge_margin,
+                    "with --truth: leave out cells within this distance (m) of a step of more than 0.1 m in the "
+                    "truth (a wall's face has no single height)")
+        ->check(CLI::Range(0.0, 5.0));
     cmp->add_option("--flat", flat, "height of the ground (m, ENU up)");
     cmp->add_option("--box", box_args, "an obstacle: X0,Y0,X1,Y1,H (m, ENU)");
     cmp->add_option("--obstacle-height", obstacle_height, "a cell above this is an obstacle (m)");
@@ -168,8 +179,10 @@ int main(int argc, char** argv)
     study->add_option("--trials", o.trials, "trials averaged")->check(CLI::Range(1, 1000));
     study->add_option("--seed", o.seed, "random seed");
     study->add_flag("--spread", o.spread, "spread points whose sigma exceeds the grid (section 3.5)");
+    ugv::eval::MapDiffCommand diff(app);  // its options are bound to its members
     CLI11_PARSE(app, argc, argv);
 
+    if (diff.chosen()) return diff.run();
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {
@@ -180,7 +193,33 @@ int main(int argc, char** argv)
             }
             boxes.push_back(b);
         }
-        return compare(log_path, channel, flat, boxes, obstacle_height, all);
+        if (!truth_path.empty()) {
+            std::ifstream in(truth_path, std::ios::binary);
+            std::stringstream bytes;
+            bytes << in.rdbuf();
+            try {
+                auto field = std::make_shared<ugv::simworld::HeightField>(ugv::simworld::decode_height_field(bytes.str()));
+                const double step = field->resolution_m;
+                auto truth = [field, edge_margin, step](double x, double y) {
+                    const double z = field->height_at(x, y);
+                    for (double dx = -edge_margin; dx <= edge_margin + 1e-9; dx += step)
+                        for (double dy = -edge_margin; dy <= edge_margin + 1e-9; dy += step)
+                            if (!(std::abs(field->height_at(x + dx, y + dy) - z) <= 0.1)) return std::numeric_limits<double>::quiet_NaN();
+                    return z;
+                };
+                return compare(log_path, channel, truth, obstacle_height, all);
+            } catch (const std::invalid_argument& e) {
+                std::fprintf(stderr, "ugv-eval: %s: %s\n", truth_path.c_str(), e.what());
+                return 2;
+            }
+        }
+        auto flat_with_boxes = [flat, boxes](double x, double y) {
+            double z = flat;
+            for (const Box& b : boxes)
+                if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) z = std::max(z, b.h);
+            return z;
+        };
+        return compare(log_path, channel, flat_with_boxes, obstacle_height, all);
     }
     return floor_study(o);
 }
