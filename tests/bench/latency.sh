@@ -7,48 +7,35 @@
 #                   (utime) -> received, which includes its reorder buffer;
 #   ugv-nodscan:    an LMS_SCAN received -> the next POINTS received.
 # Runs against the emulators (ugv-sim) on pseudo-terminals, LCM on its own port, for
-# UGV_BENCH_SECONDS (default 10). Prints a line per check and `N passed, N failed`; a check
-# passes when it measured something, and the goals (p99 < 1 ms for the drivers) are reported.
-set -uo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=${UGV_BIN_DIR:-$root/build/bin}
-seconds=${UGV_BENCH_SECONDS:-10}
-work=$(mktemp -d /tmp/ugv-bench-latency-XXXXXX)
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7690?ttl=0"
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null; done; sleep 1; for p in "${pids[@]}"; do kill -KILL "$p" 2>/dev/null; done; rm -rf "$work"; }
-trap cleanup EXIT
-bg() { "$@" >>"$work/log" 2>&1 & pids+=($!); }
+# --seconds (UGV_BENCH_SECONDS, default 10). Prints a line per check and `N passed, N failed`;
+# a check passes when it measured something, and the goals (p99 < 1 ms for the drivers) are
+# reported.
+source "$(dirname "$0")/bench.sh"
+BENCH_SECONDS=${UGV_BENCH_SECONDS:-10}
+bench_flags none "$@"
+bench_begin latency 7305
 
-bg "$bin/ugv-sim" lms --pty "$work/lms"
-bg "$bin/ugv-sim" gps --pty "$work/gps"
-bg "$bin/ugv-sim" imu --pty "$work/imu"
-bg "$bin/ugv-sim" servo --pty "$work/servo"
-sleep 1
-printf 'device = "%s"\npublish_raw = true\n' "$work/lms" >"$work/lms.toml"
-printf 'device = "%s"\npublish_raw = true\n' "$work/gps" >"$work/gps.toml"
-printf 'device = "%s"\npublish_raw = true\n' "$work/imu" >"$work/imu.toml"
-printf 'transport = "slcan:%s@115200"\n' "$work/servo" >"$work/servo.toml"
-for d in lms gps imu servo; do bg "$bin/ugv-$d" --config "$work/$d.toml"; done
-bg "$bin/ugv-nodscan"
-bg "$bin/ugv-pose"
+for d in lms gps imu; do stack_set "$d" 'publish_raw = true'; done
+for d in lms gps imu servo; do stack_start_device "$d" || { verdict devices 1 "ugv-sim $d did not start"; bench_end; exit; }; done
+stack_start_daemons lms gps imu servo nodscan pose
 sleep 4   # handshakes
 
-measure() { "$bin/ugv-latency" --for "$seconds" "$@" >"$work/lat-$RANDOM$RANDOM" 2>&1 & }
-measure --from RAW_LMS --to LMS_SCAN
-measure --from RAW_GPS --to GPS_FIX
-measure --from RAW_IMU --to IMU
-measure --to SERVO_STATE
-measure --from LMS_SCAN --from-recv --to POINTS
-measure --from IMU --from-recv --to POSE
-measure --to POSE   # the pose's own time -> on LCM: includes the reorder buffer (buffer_s)
-wait_for=$(( ${seconds%.*} + 5 ))
-sleep "$wait_for"
-pass=0 fail=0
-for f in "$work"/lat-*; do
-  line=$(cat "$f")
-  if grep -q ' samples' <<<"$line" && ! grep -q ': 0 samples' <<<"$line"; then pass=$((pass+1)); echo "ok   $line"
-  else fail=$((fail+1)); echo "FAIL $line"; fi
+measure() {  # measure NAME ARGS...: ugv-latency in the background, collected below
+    local name=$1; shift
+    "$STACK_BIN/ugv-latency" --for "$BENCH_SECONDS" "$@" >"$BENCH_WORK/latency-$name.out" 2>&1 &
+    BENCH_BG+=("$name:$!")
+}
+measure lms --from RAW_LMS --to LMS_SCAN
+measure gps --from RAW_GPS --to GPS_FIX
+measure imu --from RAW_IMU --to IMU
+measure servo --to SERVO_STATE
+measure nodscan --from LMS_SCAN --from-recv --to POINTS
+measure pose-imu --from IMU --from-recv --to POSE
+measure pose-own --to POSE   # the pose's own time -> on LCM: includes the reorder buffer (buffer_s)
+for entry in "${BENCH_BG[@]}"; do
+    wait "${entry##*:}"
+    line=$(tail -n 1 "$BENCH_WORK/latency-${entry%:*}.out")
+    verdict "${entry%:*}" "$(grep -q ' samples' <<<"$line" && ! grep -q ': 0 samples' <<<"$line"; echo $?)" "$line"
 done
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+BENCH_BG=()
+bench_end
