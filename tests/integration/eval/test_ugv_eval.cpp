@@ -1,0 +1,108 @@
+// ugv-eval on logs written here: `compare --truth` against a height field in the simulator's
+// file format, and `diff` between the maps of two logs.
+#include <catch2/catch.hpp>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "ugv/simworld/height_field.hpp"
+#include "ugv/terrain_map_t.hpp"
+#include "ugv_test/process.hpp"
+
+using namespace ugv;
+
+namespace {
+
+constexpr int64_t kUtime = 1'700'000'000'000'000;
+
+// A 4 x 4 map of 1 m cells from (0, -2) at the identity pose: cell (i, j) covers x in
+// [i, i+1), y in [j-2, j-1); every cell at height z.
+terrain_map_t flat_map(float z)
+{
+    terrain_map_t m{};
+    m.utime = kUtime;
+    m.pose.utime = kUtime;
+    m.pose.orientation[0] = 1.0;
+    m.resolution = 1.0f;
+    m.nx = m.ny = 4;
+    m.origin_x = 0.0f;
+    m.origin_y = -2.0f;
+    m.ncells = 16;
+    m.mean_z.assign(16, z);
+    m.variance_z.assign(16, 0.01f);
+    m.count.assign(16, 5);
+    return m;
+}
+
+std::string write_log(const test::TempDir& dir, const std::string& name, const terrain_map_t& m)
+{
+    const std::string path = dir / name;
+    lcm::LogFile log(path, "w");
+    std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+    m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+    lcm::LogEvent ev{};
+    ev.eventnum = 0;
+    ev.timestamp = kUtime;
+    ev.channel = "TERRAIN_MAP";
+    ev.datalen = static_cast<int32_t>(buf.size());
+    ev.data = buf.data();
+    log.writeEvent(&ev);
+    return path;
+}
+
+int eval(const test::TempDir& dir, std::vector<std::string> args, std::string& out)
+{
+    args.insert(args.begin(), test::bin("ugv-eval"));
+    const int rc = test::run(args, dir / "out.txt", dir / "err.txt", 30);
+    out = test::read_file(dir / "out.txt") + test::read_file(dir / "err.txt");
+    return rc;
+}
+
+}  // namespace
+
+TEST_CASE("ugv-eval compare --truth: bias and RMSE against the simulator's height field, edges left out")
+{
+    test::TempDir dir;
+    // Truth: flat at 0 with a 1 m step along x >= 2 (cells i = 2, 3 are 1 m high).
+    simworld::HeightField truth(-1.0, -3.0, 0.1, 60, 60, 0.0f);
+    for (int i = 30; i < 60; ++i)
+        for (int j = 0; j < 60; ++j) truth.at(i, j) = 1.0f;
+    test::write_file(dir / "truth.hf", simworld::encode_height_field(truth));
+    terrain_map_t m = flat_map(0.02f);
+    for (int i = 2; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) m.mean_z[static_cast<std::size_t>(i * 4 + j)] = 1.02f;
+    const std::string log = write_log(dir, "map.lcm", m);
+    std::string out;
+    REQUIRE(eval(dir, {"compare", log, "--truth", dir / "truth.hf"}, out) == 0);
+    CHECK(out.find("\"known\": 16") != std::string::npos);
+    CHECK(out.find("\"bias_m\": 0.02000") != std::string::npos);
+    CHECK(out.find("\"rmse_m\": 0.02000") != std::string::npos);
+    // Cell centres at x = 1.5 and 2.5 are within 0.6 m of the step at x = 2: left out.
+    REQUIRE(eval(dir, {"compare", log, "--truth", dir / "truth.hf", "--exclude-edges", "0.6"}, out) == 0);
+    CHECK(out.find("\"known\": 8") != std::string::npos);
+    // Not a height field: one line, exit 2.
+    test::write_file(dir / "bad.hf", "P5\n");
+    CHECK(eval(dir, {"compare", log, "--truth", dir / "bad.hf"}, out) == 2);
+    CHECK(out.find("not a height field") != std::string::npos);
+}
+
+TEST_CASE("ugv-eval diff: equal maps pass at zero tolerance, a changed cell is found")
+{
+    test::TempDir dir;
+    const std::string a = write_log(dir, "a.lcm", flat_map(0.5f));
+    const std::string same = write_log(dir, "same.lcm", flat_map(0.5f));
+    terrain_map_t changed = flat_map(0.5f);
+    changed.mean_z[5] = 0.55f;
+    changed.mean_z[6] = NAN;
+    const std::string c = write_log(dir, "c.lcm", changed);
+    std::string out;
+    CHECK(eval(dir, {"diff", a, same, "--max-dz", "0"}, out) == 0);
+    CHECK(out.find("\"cells_both\": 16") != std::string::npos);
+    CHECK(eval(dir, {"diff", a, c, "--max-dz", "0.01"}, out) == 1);
+    CHECK(out.find("\"cells_both\": 15") != std::string::npos);
+    CHECK(out.find("\"only_a\": 1") != std::string::npos);
+    CHECK(eval(dir, {"diff", a, c, "--max-dz", "0.06"}, out) == 0);
+}
