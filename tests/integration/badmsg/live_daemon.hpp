@@ -14,17 +14,10 @@
 
 #include <ugv/daemon_status_t.hpp>
 
+#include "ugv_test/encoded.hpp"
 #include "ugv_test/process.hpp"
 
 namespace ugv::test {
-
-template <typename T>
-std::vector<uint8_t> encoded(const T& msg)
-{
-    std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
-    msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
-    return buf;
-}
 
 class LiveDaemon
 {

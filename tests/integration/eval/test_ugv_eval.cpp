@@ -10,6 +10,7 @@
 
 #include "ugv/simworld/height_field.hpp"
 #include "ugv/terrain_map_t.hpp"
+#include "ugv_test/encoded.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
@@ -41,15 +42,7 @@ std::string write_log(const test::TempDir& dir, const std::string& name, const t
 {
     const std::string path = dir / name;
     lcm::LogFile log(path, "w");
-    std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
-    m.encode(buf.data(), 0, static_cast<int>(buf.size()));
-    lcm::LogEvent ev{};
-    ev.eventnum = 0;
-    ev.timestamp = kUtime;
-    ev.channel = "TERRAIN_MAP";
-    ev.datalen = static_cast<int32_t>(buf.size());
-    ev.data = buf.data();
-    log.writeEvent(&ev);
+    test::write_event(log, kUtime, "TERRAIN_MAP", m);
     return path;
 }
 

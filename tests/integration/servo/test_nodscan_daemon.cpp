@@ -12,6 +12,7 @@
 #include "ugv/laser_scan_t.hpp"
 #include "ugv/point_cloud_t.hpp"
 #include "ugv/servo_state_t.hpp"
+#include "ugv_test/encoded.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
@@ -22,19 +23,6 @@ constexpr double kHeight = 0.9;
 constexpr int64_t kStart = 1'700'000'000'000'000;
 
 double tilt_at(double t) { return 0.35 + 0.12 * std::sin(2 * std::numbers::pi * 0.5 * t); }
-
-template <typename T>
-void add_event(lcm::LogFile& log, int64_t utime, const std::string& channel, const T& msg)
-{
-    std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
-    msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
-    lcm::LogEvent ev{};
-    ev.timestamp = utime;
-    ev.channel = channel;
-    ev.datalen = static_cast<int32_t>(buf.size());
-    ev.data = buf.data();
-    log.writeEvent(&ev);
-}
 
 // 3 s of servo states at 100 Hz and scans at 37.5 Hz (181 beams over 180 deg, 13.3 ms).
 int write_log(const std::string& path)
@@ -66,7 +54,7 @@ int write_log(const std::string& path)
                 s.flags.push_back(hit ? laser_scan_t::FLAG_OK : laser_scan_t::FLAG_OVERFLOW);
                 nan_beams += hit ? 0 : 1;
             }
-            add_event(log, s.utime + beam_span, "LMS_SCAN", s);
+            test::write_event(log, s.utime + beam_span, "LMS_SCAN", s);
             next_scan += scan_period;
             continue;
         }
@@ -75,7 +63,7 @@ int write_log(const std::string& path)
         m.seq = servo_seq++;
         m.angle = tilt_at(static_cast<double>(next_servo) * 1e-6);
         m.cia402_state = servo_state_t::STATE_OPERATION_ENABLED;
-        add_event(log, m.utime, "SERVO_STATE", m);
+        test::write_event(log, m.utime, "SERVO_STATE", m);
         next_servo += servo_period;
     }
     return nan_beams;
