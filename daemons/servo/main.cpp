@@ -6,7 +6,7 @@
 
 int main(int argc, char** argv)
 {
-    ugv::daemon::Daemon d({.name = "ugv-servo", .status_channel = "STATUS_SERVO"}, argc, argv);
+    ugv::daemon::Daemon d({.name = "ugv-servo", .status_channel = "STATUS_SERVO", .bus_batch_ms = 10}, argc, argv);
     ugv::servo::ServoConfig config = ugv::servo::read_config(d.config());
     d.start();
     ugv::servo::ServoApp app(d, std::move(config));

@@ -42,6 +42,8 @@ ServoConfig read_config(runtime::Config& cfg)
     d.sync_period_us = cfg.get_int("sync_period_ms", 0, 0, 10) * 1000;
     d.enabler.transition_timeout_us = cfg.get_int("enable_timeout_ms", 500, 10, 10000) * 1000;
     d.enabler.max_retries = static_cast<int>(cfg.get_int("enable_retries", 3, 0, 100));
+    // slcan's ASCII lines have no checksum (SocketCAN frames were CRC-checked on the bus).
+    d.check_tpdo_plausibility = c.transport.rfind("slcan:", 0) == 0;
 
     c.nod.hard_limits = {min_tilt, max_tilt};
     c.nod.lead_s = cfg.get_double("setpoint_lead_ms", 50.0, 0.0, 1000.0) * 1e-3;
@@ -64,7 +66,7 @@ ServoConfig read_config(runtime::Config& cfg)
     n.scan_period_s = p.get_double("scan_period_s", 1.0 / 37.5, 0.001, 10.0);
     if (auto why = nodscan::validate(n, c.nod.hard_limits)) p.fail("kind", *why);
 
-    c.control_period_us = cfg.get_int("control_period_ms", 2, 1, 50) * 1000;
+    c.control_period_us = cfg.get_int("control_period_ms", 10, 1, 50) * 1000;
     return c;
 }
 

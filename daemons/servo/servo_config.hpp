@@ -19,7 +19,7 @@ struct ServoConfig
     canopen::DriveConfig drive;
     NodControllerOptions nod;
     nodscan::NodCommand default_profile;
-    int64_t control_period_us = 2'000;
+    int64_t control_period_us = 10'000;  // the drive's TPDO period: a set-point per status
     double shutdown_timeout_s = 0.8;
 };
 

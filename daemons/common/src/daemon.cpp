@@ -120,6 +120,7 @@ Daemon::Daemon(Options options, int argc, char** argv) : options_(std::move(opti
             for (auto& c : def_status) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         }
         status_channel_ = config_->get_string("status_channel", def_status);
+        bus_batch_us_ = config_->get_int("bus_batch_ms", options_.bus_batch_ms, 0, 100) * 1000;
     } catch (const runtime::ConfigError& e) {
         exit_config_error(e.what());
     }
@@ -220,6 +221,8 @@ void Daemon::publish_status()
     counters.emplace_back("bus_decode_failures", static_cast<int64_t>(in_->counters().decode_failures));
     counters.emplace_back("bus_handler_errors", static_cast<int64_t>(in_->counters().handler_errors));
     counters.emplace_back("bus_publish_failures", static_cast<int64_t>(out_->counters().publish_failures));
+    counters.emplace_back("bus_incomplete_messages", static_cast<int64_t>(in_->counters().incomplete_messages));
+    counters.emplace_back("bus_invalid_datagrams", static_cast<int64_t>(in_->counters().invalid_datagrams));
     const auto msg = make_status_message(io::now_utime(), status_seq_++, options_.name, instance_,
                                          wire_state(state_.load()), err, io::monotonic_us() - start_us_, counters);
     bus::publish(*out_, status_channel_, msg);
@@ -253,6 +256,13 @@ int Daemon::run()
     add_timer(1'000'000, [this] { publish_status(); });
     const int64_t wd = notifier_.watchdog_interval_us();
     if (wd > 0) add_timer(wd, [this] { on_watchdog(); });
+    // Batched: a timer drains the bus instead of a wake-up per datagram (Options::bus_batch_ms).
+    const bool batched = bus_batch_us_ > 0 && in_->fd() >= 0;
+    if (batched)
+        add_timer(bus_batch_us_, [this] {
+            for (int k = 0; k < 10'000 && in_->handle(0) == bus::HandleResult::handled; ++k) {
+            }
+        });
     publish_status();
 
     const int stop_fd = install_stop_signals();
@@ -260,7 +270,7 @@ int Daemon::run()
     while (!stop_requested()) {
         pfds.clear();
         pfds.push_back({stop_fd, POLLIN, 0});
-        pfds.push_back({in_->fd(), POLLIN, 0});
+        pfds.push_back({batched ? -1 : in_->fd(), POLLIN, 0});
         for (const auto& [fd, fn] : fds_) pfds.push_back({fd, POLLIN, 0});
         int64_t now = io::monotonic_us();
         int64_t wait_us = 100'000;

@@ -44,6 +44,12 @@ struct Options
     std::string status_channel;      // default STATUS_<NAME>; config key status_channel
     bool processing = false;         // offers --replay LOG --out LOG
     std::string default_config = ""; // default --config path ("" = run on defaults if absent)
+    // Default of the config key bus_batch_ms: 0 = take each LCM message as it arrives; N > 0 =
+    // wake for the bus at most every N ms and take everything that came meanwhile. Every
+    // subscriber receives every datagram on the group (~360/s with the whole stack), and on a
+    // small computer each wake-up costs more than the message: daemons whose inputs are
+    // consumed at a slower pace (a 10 Hz pose, 2 Hz maps, a rare servo command) batch.
+    int bus_batch_ms = 0;
 };
 
 enum class State { starting, running, degraded, fault, stopping };
@@ -113,6 +119,7 @@ private:
     std::string last_error_;
     std::atomic<int64_t> last_alive_us_{0};
     int64_t health_timeout_us_ = 2'000'000;
+    int64_t bus_batch_us_ = 0;
     int64_t start_us_ = 0;
     int64_t status_seq_ = 0;
     std::string status_channel_;

@@ -1,5 +1,6 @@
 // LCM behind a small interface, with three implementations:
-//   live   - any LCM URL (udpm multicast, memq for in-process tests);
+//   live   - any LCM URL (udpm multicast, memq for in-process tests); udpm is received on
+//            the caller's thread, without liblcm's receive thread (live_bus.cpp);
 //   replay - reads an LCM log in order and dispatches each event, as fast as the CPU allows,
 //            deterministically (the processing daemons' --replay);
 //   writer - publishing appends events to an LCM log (the processing daemons' --out).
@@ -35,6 +36,8 @@ struct BusCounters
     uint64_t decode_failures = 0;  // messages a typed handler could not decode (dropped)
     uint64_t handler_errors = 0;   // exceptions caught from handlers
     uint64_t publish_failures = 0;
+    uint64_t incomplete_messages = 0;  // live udpm: fragmented messages that lost a fragment
+    uint64_t invalid_datagrams = 0;    // live udpm: datagrams on the port that are not LCM's
 };
 
 class Bus
