@@ -22,7 +22,7 @@ int main(int argc, char** argv)
                            "rejected_before_history", "rejected_after_history", "rejected_no_pose",
                            "rejected_outside_map", "poses_in",              "poses_rejected_non_finite",
                            "poses_rejected_out_of_order", "poses_rejected_status", "clouds_in",
-                           "clouds_malformed",     "clouds_duplicate",      "wraps",                 "rotations",
+                           "clouds_malformed",     "clouds_duplicate",      "clouds_rejected_time", "poses_rejected_time",      "wraps",                 "rotations",
                            "recentres",            "resets",                "maps_published",
                            "publish_time_us"};
     for (const char* n : names) c[n] = 0;
@@ -52,6 +52,8 @@ int main(int argc, char** argv)
         c["clouds_in"] = static_cast<int64_t>(n.clouds_in);
         c["clouds_malformed"] = static_cast<int64_t>(n.clouds_malformed);
         c["clouds_duplicate"] = static_cast<int64_t>(n.clouds_duplicate);
+        c["clouds_rejected_time"] = static_cast<int64_t>(n.clouds_rejected_time);
+        c["poses_rejected_time"] = static_cast<int64_t>(n.poses_rejected_time);
         c["wraps"] = static_cast<int64_t>(m.wraps);
         c["rotations"] = static_cast<int64_t>(m.rotations);
         c["recentres"] = static_cast<int64_t>(m.recentres);

@@ -9,13 +9,28 @@ namespace ugv::terrain_daemon {
 
 namespace {
 
-// Time of a cloud's last point (us).
+// A cloud is one scan (13-27 ms); a point offset beyond this is garbage, and must not push
+// the cloud's end time past any pose (or past int64).
+constexpr float kMaxCloudSpanS = 10.0f;
+constexpr std::size_t kRecentClouds = 64;  // per sensor, for duplicates: ~2 s of scans
+// Clouds lead the pose by the pose's reorder buffer and a scan (~0.2 s). One stamped far
+// ahead would wait at the head of the queue for a pose that never comes, holding back every
+// cloud behind it, and would push the publishing clock into the future: it is rejected.
+constexpr int64_t kMaxCloudLeadUs = 5'000'000;
+
+bool leads_too_far(int64_t cloud_us, int64_t newest_pose_us)
+{
+    return newest_pose_us < INT64_MAX - kMaxCloudLeadUs && cloud_us > newest_pose_us + kMaxCloudLeadUs;
+}
+
+// Time of a cloud's last point (us). msg.utime > 0 (on_points).
 int64_t cloud_end_us(const point_cloud_t& msg)
 {
     float latest = 0.0f;
     for (float t : msg.time_offset)
         if (std::isfinite(t)) latest = std::max(latest, t);
-    return msg.utime + std::llround(static_cast<double>(latest) * 1e6);
+    const int64_t span_us = std::llround(static_cast<double>(std::min(latest, kMaxCloudSpanS)) * 1e6);
+    return msg.utime > INT64_MAX - span_us ? INT64_MAX : msg.utime + span_us;
 }
 
 }  // namespace
@@ -32,6 +47,10 @@ TerrainNode::TerrainNode(const TerrainDaemonConfig& config, Publish publish, std
 void TerrainNode::on_pose(const pose_t& msg)
 {
     ++counters_.poses_in;
+    if (msg.utime <= 0) {  // no time: the history and the publishing clock need one
+        ++counters_.poses_rejected_time;
+        return;
+    }
     if (msg.status == pose_t::STATUS_INITIALIZING || msg.status == pose_t::STATUS_FAULT) {
         ++counters_.poses_rejected_status;
         return;
@@ -47,16 +66,23 @@ void TerrainNode::on_pose(const pose_t& msg)
 void TerrainNode::on_points(const point_cloud_t& msg)
 {
     ++counters_.clouds_in;
-    // The same cloud delivered twice (a re-sent or looped-back message) would be fused twice,
-    // doubling its points' weight in every cell it touches.
-    const auto [last, first_of_sensor] = last_cloud_utime_.try_emplace(msg.sensor_id, msg.utime);
-    if (!first_of_sensor) {
-        if (last->second == msg.utime) {
-            ++counters_.clouds_duplicate;
-            return;
-        }
-        last->second = msg.utime;
+    if (msg.utime <= 0) {  // no time: nothing to place it with (and the wait arithmetic needs > 0)
+        ++counters_.clouds_malformed;
+        return;
     }
+    // The same cloud delivered twice (a re-sent or looped-back message, or a log replayed
+    // into a live bus) would be fused twice, doubling its points' weight in every cell.
+    if (mapper_.has_pose() && leads_too_far(msg.utime, mapper_.poses().newest_us())) {
+        ++counters_.clouds_rejected_time;
+        return;
+    }
+    std::deque<int64_t>& recent = recent_cloud_utimes_[msg.sensor_id];
+    if (std::find(recent.begin(), recent.end(), msg.utime) != recent.end()) {
+        ++counters_.clouds_duplicate;
+        return;
+    }
+    recent.push_back(msg.utime);
+    if (recent.size() > kRecentClouds) recent.pop_front();
     waiting_.push_back(msg);
     fuse_ready(false);
     maybe_publish(msg.utime);
@@ -87,6 +113,11 @@ void TerrainNode::fuse_ready(bool all)
     if (!waiting_.empty()) latest_message = std::max(latest_message, waiting_.back().utime);
     while (!waiting_.empty()) {
         const point_cloud_t& front = waiting_.front();
+        if (has_pose && leads_too_far(front.utime, newest)) {  // it came before any pose did
+            ++counters_.clouds_rejected_time;
+            waiting_.pop_front();
+            continue;
+        }
         const bool covered = has_pose && cloud_end_us(front) <= newest;
         const bool waited = latest_message - front.utime > config_.max_point_wait_us;
         if (!(all || covered || waited)) break;
@@ -101,7 +132,7 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
     if (next_publish_us_ == 0) next_publish_us_ = message_time_us;
     if (message_time_us < next_publish_us_) return;
     // Catch up without a burst after a gap: the next slot after this message.
-    while (next_publish_us_ <= message_time_us) next_publish_us_ += period_us_;
+    next_publish_us_ = message_time_us + (period_us_ - (message_time_us - next_publish_us_) % period_us_);
     const int64_t start = now_us_();
     mapper_.snapshot(snapshot_);
     to_message(snapshot_, last_pose_, seq_++, message_);

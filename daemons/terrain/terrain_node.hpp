@@ -24,7 +24,9 @@ struct NodeCounters
     uint64_t poses_in = 0;
     uint64_t poses_rejected_status = 0;  // INITIALIZING or FAULT
     uint64_t clouds_in = 0;
-    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints
+    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, or no time (utime <= 0)
+    uint64_t clouds_rejected_time = 0;   // more than kMaxCloudLeadUs after the newest pose: a bad clock
+    uint64_t poses_rejected_time = 0;    // utime <= 0: no time
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
@@ -56,7 +58,9 @@ private:
     std::function<int64_t()> now_us_;
     NodeCounters counters_;
     std::deque<point_cloud_t> waiting_;
-    std::map<std::string, int64_t> last_cloud_utime_;  // by sensor_id
+    // The times of each sensor's recent clouds (by sensor_id, newest last): a cloud whose
+    // time is among them is a duplicate, even when it comes back after newer ones.
+    std::map<std::string, std::deque<int64_t>> recent_cloud_utimes_;
     pose_t last_pose_{};
     bool have_pose_ = false;
     int64_t period_us_;

@@ -8,6 +8,8 @@
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
 
+#include "ugv/bus/typed.hpp"
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -66,6 +68,7 @@ int compare(const std::string& path, const std::string& channel, const HeightFn&
     terrain_map_t m;
     std::vector<uint8_t> last;
     int maps = 0;
+    int malformed = 0;
     auto report = [&](const terrain_map_t& map) {
         const MapMetrics r = evaluate(to_snapshot(map), truth, obstacle_height);
         std::printf("{\"utime\": %lld, \"known\": %d, \"coverage\": %.4f, \"bias_m\": %.5f, \"rmse_m\": %.5f, "
@@ -76,12 +79,18 @@ int compare(const std::string& path, const std::string& channel, const HeightFn&
     };
     while (const lcm::LogEvent* ev = log.readNextEvent()) {
         if (ev->channel != channel) continue;
-        if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) continue;
+        if (!ugv::bus::decode_checked(ev->data, static_cast<std::size_t>(ev->datalen), m)) {
+            ++malformed;
+            continue;
+        }
         ++maps;
         if (all) report(m);
         const auto* p = static_cast<const uint8_t*>(ev->data);
         last.assign(p, p + ev->datalen);
     }
+    if (malformed > 0)
+        std::fprintf(stderr, "ugv-eval: %d message(s) on %s in %s are not terrain maps (skipped)\n", malformed,
+                     channel.c_str(), path.c_str());
     if (maps == 0) {
         std::fprintf(stderr, "ugv-eval: no map on %s in %s\n", channel.c_str(), path.c_str());
         return 1;

@@ -10,6 +10,8 @@
 
 #include <ugv/terrain_map_t.hpp>
 
+#include "ugv/bus/typed.hpp"
+
 namespace ugv::eval {
 namespace {
 
@@ -101,7 +103,7 @@ bool read_maps(const std::string& path, const std::string& channel, std::map<int
     while (const lcm::LogEvent* ev = log.readNextEvent()) {
         if (ev->channel != channel) continue;
         terrain_map_t m;
-        if (m.decode(ev->data, 0, ev->datalen) == ev->datalen) maps[m.utime] = std::move(m);
+        if (ugv::bus::decode_checked(ev->data, static_cast<std::size_t>(ev->datalen), m)) maps[m.utime] = std::move(m);
     }
     return true;
 }

@@ -1,6 +1,9 @@
 // Found by test_terrain_bad_messages: ugv-terrain fused a cloud delivered twice twice (its
-// points' weight doubled in every cell) without counting it. TerrainNode, no bus.
+// points' weight doubled in every cell) without counting it. And clouds whose times would
+// overflow the wait arithmetic. TerrainNode, no bus.
 #include <catch2/catch.hpp>
+
+#include <vector>
 
 #include "terrain_node.hpp"
 
@@ -50,4 +53,71 @@ TEST_CASE("TerrainNode: a cloud delivered twice is fused once and counted; anoth
     CHECK(node.counters().clouds_in == 3);
     CHECK(node.counters().clouds_duplicate == 1);
     CHECK(node.mapper().counters().points_fused == 15);
+}
+
+TEST_CASE("TerrainNode: an older cloud delivered again after newer ones is still a duplicate")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    for (int k = 1; k <= 5; ++k) node.on_points(cloud_at(t0 + k * 26'667, "front", 10));
+    node.on_points(cloud_at(t0 + 2 * 26'667, "front", 10));  // the second one, again
+    node.on_points(cloud_at(t0 + 4 * 26'667, "front", 10));  // and the fourth
+    node.on_pose(pose_at(t0 + 200'000));
+    node.flush();
+    CHECK(node.counters().clouds_in == 7);
+    CHECK(node.counters().clouds_duplicate == 2);
+    CHECK(node.mapper().counters().points_fused == 50);
+}
+
+TEST_CASE("TerrainNode: clouds with no time or absurd point offsets are dropped or bounded, never overflow")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    node.on_points(cloud_at(0, "front", 10));          // utime 0: no time
+    node.on_points(cloud_at(-5'000'000, "front", 10));  // before the epoch
+    CHECK(node.counters().clouds_malformed == 2);
+    // A point offset of 3e38 s (its end time would overflow int64) and a cloud at the end of
+    // time: both wait, are fused or dropped by the usual rules, and nothing is undefined
+    // (UBSan in tools/sanitize checks the arithmetic).
+    point_cloud_t far = cloud_at(t0 + 50'000, "front", 10);
+    far.time_offset[3] = 3e38f;
+    node.on_points(far);
+    node.on_pose(pose_at(t0 + 100'000));
+    node.flush();
+    CHECK(node.counters().clouds_in == 3);
+    CHECK(node.counters().clouds_malformed == 2);
+    // The far cloud's 9 good points fall in the pose history; the 3e38 s one does not.
+    CHECK(node.mapper().counters().points_fused == 9);
+    CHECK(node.counters().poses_rejected_time == 0);
+    node.on_pose(pose_at(0));
+    CHECK(node.counters().poses_rejected_time == 1);
+}
+
+TEST_CASE("TerrainNode: a cloud stamped far in the future is rejected; it neither blocks the clouds behind it nor stops the maps")
+{
+    std::vector<int64_t> maps;
+    terrain_daemon::TerrainNode node({}, [&](const terrain_map_t& m) { maps.push_back(m.utime); },
+                                     [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    // Before any pose: it waits at the head of the queue, then goes when the first pose shows
+    // how far ahead it is.
+    node.on_points(cloud_at(INT64_MAX, "front", 10));
+    node.on_points(cloud_at(t0 + 20'000, "front", 10));
+    node.on_pose(pose_at(t0));
+    // With poses: rejected on arrival (a year ahead).
+    node.on_points(cloud_at(t0 + 365LL * 86'400'000'000, "front", 10));
+    for (int k = 1; k <= 30; ++k) {
+        node.on_points(cloud_at(t0 + 20'000 + k * 100'000, "front", 10));
+        node.on_pose(pose_at(t0 + k * 100'000));
+    }
+    node.flush();
+    CHECK(node.counters().clouds_rejected_time == 2);
+    // The other 31 clouds are fused; the last one's points come after the newest pose.
+    CHECK(node.mapper().counters().points_fused == 300);
+    CHECK(node.mapper().counters().rejected_after_history == 10);
+    // Maps at 2 Hz of message time through the 3 s: the future cloud did not move the clock.
+    CHECK(maps.size() >= 6);
+    CHECK(maps.back() >= t0 + 2'500'000);
 }

@@ -99,3 +99,40 @@ TEST_CASE("ugv-eval diff: equal maps pass at zero tolerance, a changed cell is f
     CHECK(out.find("\"only_a\": 1") != std::string::npos);
     CHECK(eval(dir, {"diff", a, c, "--max-dz", "0.06"}, out) == 0);
 }
+
+TEST_CASE("ugv-eval: map messages whose bytes lie are skipped and said, never decoded")
+{
+    // A map whose ncells says 2^31 - 1 (lcm-gen's decode would try to allocate 24 GB), a
+    // truncated map, then a good one: both commands use the good one.
+    test::TempDir dir;
+    const terrain_map_t good = flat_map(0.5f);
+    std::vector<uint8_t> lying = test::encoded(good);
+    const std::size_t ncells_at = lying.size() - 16 * 4 * 3 - 4;  // the arrays follow ncells
+    REQUIRE(lying[ncells_at + 3] == 16);
+    lying[ncells_at] = 0x7f;
+    lying[ncells_at + 1] = lying[ncells_at + 2] = lying[ncells_at + 3] = 0xff;
+    std::vector<uint8_t> truncated = test::encoded(good);
+    truncated.resize(truncated.size() / 2);
+    const std::string bad = dir / "bad.lcm";
+    {
+        lcm::LogFile log(bad, "w");
+        for (auto* bytes : {&lying, &truncated}) {
+            lcm::LogEvent ev{};
+            ev.timestamp = kUtime;
+            ev.channel = "TERRAIN_MAP";
+            ev.datalen = static_cast<int32_t>(bytes->size());
+            ev.data = bytes->data();
+            log.writeEvent(&ev);
+        }
+        test::write_event(log, kUtime, "TERRAIN_MAP", good);
+    }
+    const std::string a = write_log(dir, "a.lcm", good);
+    std::string out;
+    CHECK(eval(dir, {"diff", a, bad, "--max-dz", "0"}, out) == 0);
+    CHECK(out.find("\"cells_both\": 16") != std::string::npos);
+    simworld::HeightField truth(-1.0, -3.0, 0.1, 60, 60, 0.5f);
+    test::write_file(dir / "truth.hf", simworld::encode_height_field(truth));
+    CHECK(eval(dir, {"compare", bad, "--truth", dir / "truth.hf"}, out) == 0);
+    CHECK(out.find("\"known\": 16") != std::string::npos);
+    CHECK(out.find("2 message(s) on TERRAIN_MAP in " + bad + " are not terrain maps (skipped)") != std::string::npos);
+}
