@@ -55,7 +55,9 @@ LcmDatagram parse_lcm_datagram(const uint8_t* data, std::size_t size)
     d.payload = data + header;
     d.payload_size = size - header;
     const bool consistent = d.fragment_count >= 1 && d.fragment_no < d.fragment_count &&
-                            d.message_size <= kLcmMaxMessageBytes && d.offset <= d.message_size &&
+                            d.message_size <= kLcmMaxMessageBytes &&
+                            d.message_size <= uint64_t{d.fragment_count} * kLcmMaxFragmentBytes &&
+                            d.offset <= d.message_size &&
                             d.payload_size <= d.message_size - d.offset && (d.fragment_no != 0 || d.offset == 0);
     if (consistent) d.kind = LcmDatagram::Kind::fragment;
     return d;
@@ -73,9 +75,25 @@ LcmReassembler::InProgress& LcmReassembler::slot_for(uint64_t sender)
     auto& oldest = *std::min_element(in_progress_.begin(), in_progress_.end(),
                                      [](const InProgress& a, const InProgress& b) { return a.last_use < b.last_use; });
     if (oldest.fragment_count != 0) ++counters_.incomplete_messages;
+    bytes_in_progress_ -= oldest.message.payload.size();
     oldest = InProgress{};
     oldest.sender = sender;
     return oldest;
+}
+
+void LcmReassembler::make_room(std::size_t bytes, const InProgress* keep)
+{
+    while (bytes_in_progress_ + bytes > kMaxBytesInProgress) {
+        InProgress* lru = nullptr;
+        for (auto& s : in_progress_)
+            if (&s != keep && s.fragment_count != 0 && (!lru || s.last_use < lru->last_use)) lru = &s;
+        if (!lru) return;
+        ++counters_.incomplete_messages;
+        bytes_in_progress_ -= lru->message.payload.size();
+        const uint64_t sender = lru->sender;
+        *lru = InProgress{};
+        lru->sender = sender;
+    }
 }
 
 bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, Message& done)
@@ -93,6 +111,10 @@ bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, Message
     }
     if (!same_message) {
         if (s.fragment_count != 0) ++counters_.incomplete_messages;
+        bytes_in_progress_ -= s.message.payload.size();
+        s.message.payload = {};
+        make_room(f.message_size, &s);
+        bytes_in_progress_ += f.message_size;
         s.sequence = f.sequence;
         s.fragment_count = f.fragment_count;
         s.received = 0;
@@ -109,6 +131,7 @@ bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, Message
     if (f.payload_size > 0) std::memcpy(s.message.payload.data() + f.offset, f.payload, f.payload_size);
     if (s.received < s.fragment_count) return false;
     const bool whole = s.bytes == s.message.payload.size() && !s.message.channel.empty();
+    bytes_in_progress_ -= s.message.payload.size();
     if (whole) done = std::move(s.message);
     else ++counters_.invalid_datagrams;  // fragments that do not tile their message
     s.message = Message{};

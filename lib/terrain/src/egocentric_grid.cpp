@@ -173,7 +173,15 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
         CellSums* row = &cells_.sums(first);
         const uint32_t* row_count = &cells_.count(first);
         int j = 0;
-        for (; j + 4 <= ny_; j += 4) turn_cells(t, row + j, row_x, detail::load4(centre_y + j), moved + j, to + j);
+        for (; j + 4 <= ny_; j += 4) {
+            // Unknown ground is most of a real map (the demo's holds 37 % known cells): four
+            // empty cells in a row skip the arithmetic.
+            if (row[j].empty() && row[j + 1].empty() && row[j + 2].empty() && row[j + 3].empty()) {
+                detail::store4(to + j, detail::Int4{} + kEmpty);
+                continue;
+            }
+            turn_cells(t, row + j, row_x, detail::load4(centre_y + j), moved + j, to + j);
+        }
         if (j < ny_) {
             CellSums tail[4];  // the last 1-3 cells, padded with empty ones
             std::copy(row + j, row + ny_, tail);

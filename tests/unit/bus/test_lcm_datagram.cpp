@@ -108,7 +108,10 @@ TEST_CASE("lcm datagram: fragment headers, and fragments outside their message a
     CHECK(parse(fragment(9, 10, 5, 2, 2, "", "56789")).kind == LcmDatagram::Kind::invalid);   // no >= count
     CHECK(parse(fragment(9, 10, 5, 0, 0, "M", "56789")).kind == LcmDatagram::Kind::invalid);  // count 0
     CHECK(parse(fragment(9, 10, 3, 0, 2, "M", "56789")).kind == LcmDatagram::Kind::invalid);  // fragment 0 not at 0
-    CHECK(parse(fragment(9, kLcmMaxMessageBytes + 1, 0, 0, 2, "M", "x")).kind == LcmDatagram::Kind::invalid);
+    CHECK(parse(fragment(9, kLcmMaxMessageBytes + 1, 0, 0, 2000, "M", "x")).kind == LcmDatagram::Kind::invalid);
+    // More than its fragments can carry: 2 fragments of at most 65535 bytes.
+    CHECK(parse(fragment(9, 2 * 65535 + 1, 0, 0, 2, "M", "x")).kind == LcmDatagram::Kind::invalid);
+    CHECK(parse(fragment(9, 2 * 65535, 0, 0, 2, "M", "x")).kind == LcmDatagram::Kind::fragment);
     auto short_header = fragment(9, 10, 5, 1, 2, "", "");
     short_header.resize(19);
     CHECK(parse(short_header).kind == LcmDatagram::Kind::invalid);
@@ -171,4 +174,24 @@ TEST_CASE("lcm reassembly: fragments that contradict their message or do not til
     const std::vector<uint8_t> junk{1, 2, 3, 4, 5, 6, 7, 8, 9};
     CHECK_FALSE(r.add_fragment(1, parse(junk), m));
     CHECK(r.counters().invalid_datagrams == 3);
+}
+
+TEST_CASE("lcm reassembly: datagrams claiming big messages cannot make it hold more than its budget")
+{
+    // Three senders each begin a 40 MiB message (as garbage could, 20 bytes each): the third
+    // pushes the total past 96 MiB, so the least recently used unfinished one is dropped.
+    LcmReassembler r;
+    LcmReassembler::Message m;
+    const uint32_t big = 40u << 20;
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, big, 0, 0, 1000, "A", "x")), m));
+    CHECK_FALSE(r.add_fragment(2, parse(fragment(1, big, 0, 0, 1000, "B", "x")), m));
+    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
+    CHECK_FALSE(r.add_fragment(3, parse(fragment(1, big, 0, 0, 1000, "C", "x")), m));
+    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
+    CHECK(r.counters().incomplete_messages == 1);
+    // A small message still goes through, and finishing it frees its bytes.
+    CHECK_FALSE(r.add_fragment(4, parse(fragment(1, 4, 0, 0, 2, "D", "ab")), m));
+    REQUIRE(r.add_fragment(4, parse(fragment(1, 4, 2, 1, 2, "", "cd")), m));
+    CHECK(text(m) == "abcd");
+    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
 }

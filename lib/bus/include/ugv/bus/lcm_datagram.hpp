@@ -24,6 +24,9 @@ constexpr std::size_t kLcmMaxChannelLength = 63;    // liblcm's limit, without t
 // The largest message the reassembler accepts (a 225 kB map is far below; a datagram that
 // claims gigabytes is garbage, not a reason to allocate them).
 constexpr uint32_t kLcmMaxMessageBytes = 64u << 20;
+// A fragment carries at most one UDP payload: a message cannot be larger than its fragment
+// count times this (so a lone 20-byte datagram cannot claim 64 MiB with one fragment).
+constexpr uint32_t kLcmMaxFragmentBytes = 65535;
 
 struct LcmDatagram
 {
@@ -70,6 +73,8 @@ public:
 
     const ReassemblyCounters& counters() const { return counters_; }
     ReassemblyCounters& counters() { return counters_; }
+    // The payload bytes held for unfinished messages (at most kMaxBytesInProgress).
+    std::size_t bytes_in_progress() const { return bytes_in_progress_; }
 
 private:
     struct InProgress
@@ -86,6 +91,12 @@ private:
     InProgress& slot_for(uint64_t sender);
 
     static constexpr std::size_t kMaxSenders = 32;  // beyond: the least recently used is dropped
+    // The payload buffers of all unfinished messages together; a message that would exceed it
+    // drops the least recently used unfinished ones (garbage claiming big sizes cannot make
+    // the receiver allocate without bound).
+    static constexpr std::size_t kMaxBytesInProgress = 96u << 20;
+    void make_room(std::size_t bytes, const InProgress* keep);
+    std::size_t bytes_in_progress_ = 0;
     std::vector<InProgress> in_progress_;
     uint64_t clock_ = 0;
     ReassemblyCounters counters_;
