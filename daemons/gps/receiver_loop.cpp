@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 #include <ugv/raw_bytes_t.hpp>
@@ -17,6 +18,9 @@ namespace ugv::gps {
 namespace {
 
 constexpr int kPollMs = 50;
+// Where a silent receiver is looked for (configure mode), the usual rates first: one left at
+// another rate by a different host, or by a COM command of an earlier configuration.
+const std::vector<int> kProbeBauds = {9600, 115200, 57600, 38400, 19200, 230400, 460800, 921600, 4800};
 
 // Sleeps up to us, waking early when the daemon is asked to stop.
 void sleep_unless_stopped(const daemon::Daemon& d, int64_t us)
@@ -31,8 +35,8 @@ const char* kCounterNames[] = {
     "frames_binary", "frames_binary_short", "frames_ascii", "frames_ascii_short", "frames_nmea",
     "frames_reply", "frames_prompt", "crc_errors", "bad_length", "resyncs", "skipped_bytes", "unknown_ids",
     "malformed", "binary_responses", "ignored_protocol", "superseded", "fixes_published", "velocities_published",
-    "reconnects", "silences", "configure_failures", "open_failures", "commands_sent", "clock_offset_us",
-    "clock_offset_last_us", "clock_jumps", "time_status",
+    "reconnects", "silences", "configure_failures", "open_failures", "commands_sent", "found_by_probing",
+    "clock_offset_us", "clock_offset_last_us", "clock_jumps", "time_status",
 };
 
 }  // namespace
@@ -153,12 +157,18 @@ void ReceiverLoop::run()
         sc.com_baud = config_.com_baud;
         sc.reply_timeout_ms = config_.reply_timeout_ms;
         sc.silence_timeout_us = config_.silence_timeout_us;
+        sc.probe_bauds = kProbeBauds;
         novatel::Session session(port, decoder_, sc);
         if (config_.publish_raw) {
             session.set_raw_tap([this](const uint8_t* p, std::size_t n, int64_t t) { publish_raw(p, n, t); });
         }
         const bool started = session.start(sink);
         counters["commands_sent"] += static_cast<int64_t>(session.counters().commands_sent);
+        if (session.counters().found_by_probing > 0) {
+            ++counters["found_by_probing"];
+            spdlog::warn("{}: receiver answered at {} baud, not at the configured {}; set it back with COM", config_.device,
+                         session.found_at_baud(), config_.com_baud > 0 ? config_.com_baud : config_.baud);
+        }
         if (!started) {
             ++counters["configure_failures"];
             daemon_.set_state(daemon::State::degraded, "configure " + config_.device + ": " + session.error());

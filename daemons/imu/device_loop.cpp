@@ -69,7 +69,8 @@ void DeviceLoop::run()
     TapStream stream(port, tap);
     gx1::Session session(stream, config_.session, gx1::FrameConverter(config_.r_body_sensor, config_.declination_rad));
     session.set_abort([this] { return d_.stop_requested(); });
-    runtime::Backoff backoff(100'000, 2'000'000);
+    // At most 1 s between attempts: a unit that comes back streams again within ~1.5 s.
+    runtime::Backoff backoff(100'000, 1'000'000);
     runtime::RateLimitedLog rlog;
     bool ever_opened = false;    // a reopen after this counts as a reconnect
     bool ever_streamed = false;  // before the first good handshake the daemon is STARTING
@@ -100,7 +101,12 @@ void DeviceLoop::run()
             sync_counters(session);
             if (d_.stop_requested()) break;
             if (st != gx1::Session::Status::ok) {
-                degrade(session.error());
+                // A unit set to another rate is heard as garbage: no reply ever verifies, so
+                // a failed handshake names the rate it was tried at.
+                degrade(st == gx1::Session::Status::failed
+                            ? session.error() + " at " + std::to_string(config_.baud) + " baud on " + config_.device +
+                                  " (is the unit set to another baud rate? check `baud`)"
+                            : session.error());
                 if (st == gx1::Session::Status::closed) port.close();
                 sleep_us(backoff.next());
                 continue;

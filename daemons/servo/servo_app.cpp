@@ -10,6 +10,9 @@
 namespace ugv::servo {
 namespace {
 
+// Receive errors in a row, without a frame between, after which the transport is reopened.
+constexpr int kRxErrorsBeforeReopen = 50;
+
 nodscan::NodCommand from_message(const servo_command_t& m, double scan_period_s)
 {
     nodscan::NodCommand c;
@@ -38,11 +41,12 @@ ServoApp::ServoApp(daemon::Daemon& d, ServoConfig config)
       transport_(io::make_can_transport(config_.transport, config_.bitrate)),
       drive_(config_.drive),
       nod_(config_.nod),
-      backoff_(100'000, 2'000'000)
+      backoff_(100'000, 1'000'000)  // at most 1 s: a drive or adapter that is back runs within ~1.5 s
 {
     for (const char* n : {"sdo_timeouts", "sdo_aborts", "emcy", "heartbeat_losses", "faults", "fault_resets",
                           "enable_failures", "bus_errors", "reconnects", "reinits", "tx_failures",
-                          "setpoint_timeouts", "commands_accepted", "commands_refused", "samples"})
+                          "setpoint_timeouts", "commands_accepted", "commands_refused", "samples", "rx_errors",
+                          "tpdo_implausible"})
         d_.counters()[n] = 0;
 }
 
@@ -68,6 +72,7 @@ void ServoApp::open_transport()
     }
     transport_open_ = true;
     restart_scheduled_ = false;
+    rx_errors_in_a_row_ = 0;
     if (ever_opened_) ++reconnects_;
     ever_opened_ = true;
     registered_fd_ = transport_->fd();
@@ -95,6 +100,7 @@ void ServoApp::reinitialise(const std::string& why)
     d_.notify_status("DEGRADED: " + why);
     was_operational_ = false;
     d_.set_state(daemon::State::degraded, why);
+    log_.log(spdlog::level::warn, "reinit", "re-initialising: " + why, io::monotonic_us());
     retry_at_us_ = io::monotonic_us() + backoff_.next();
 }
 
@@ -104,7 +110,14 @@ void ServoApp::drain_transport()
         const io::CanReceive r = transport_->receive(0);
         if (r.status == io::CanReceive::Status::timeout) break;
         if (r.status == io::CanReceive::Status::frame) {
+            rx_errors_in_a_row_ = 0;
             drive_.on_frame(r.frame, io::monotonic_us(), r.utime);
+            continue;
+        }
+        if (r.status == io::CanReceive::Status::error && ++rx_errors_in_a_row_ < kRxErrorsBeforeReopen) {
+            // A malformed slcan line (line noise, a byte lost) or one failed read: dropped.
+            ++rx_errors_;
+            log_.log(spdlog::level::warn, "rx", "receive error: " + r.detail, io::monotonic_us());
             continue;
         }
         if (r.status == io::CanReceive::Status::bus_error) {
@@ -138,7 +151,12 @@ void ServoApp::control_tick()
     const auto phase = drive_.phase();
     if (phase == canopen::Drive::Phase::failed) {
         if (!restart_scheduled_) {
-            reinitialise(drive_.failure());  // DEGRADED, and a restart after the back-off
+            // DEGRADED, and a restart after the back-off.
+            reinitialise(drive_.heard_since_start()
+                             ? drive_.failure()
+                             : drive_.failure() + "; nothing received from the bus at " +
+                                   std::to_string(config_.bitrate) + " bit/s: check the drive's power, node_id " +
+                                   std::to_string(config_.drive.node_id) + " and that the bus runs at `bitrate`");
             restart_scheduled_ = true;
         } else if (now >= retry_at_us_) {
             spdlog::info("re-initialising node {}", int{config_.drive.node_id});
@@ -245,6 +263,8 @@ void ServoApp::sync_counters()
     k["commands_accepted"] = static_cast<int64_t>(commands_accepted_);
     k["commands_refused"] = static_cast<int64_t>(commands_refused_);
     k["samples"] = static_cast<int64_t>(samples_);
+    k["rx_errors"] = static_cast<int64_t>(rx_errors_);
+    k["tpdo_implausible"] = static_cast<int64_t>(c.tpdo_implausible);
 }
 
 void ServoApp::shutdown()

@@ -56,6 +56,8 @@ private:
     int64_t seq_ = 0;
     uint64_t bus_errors_ = 0, reconnects_ = 0, reinits_ = 0, tx_failures_ = 0;
     uint64_t commands_accepted_ = 0, commands_refused_ = 0, samples_ = 0;
+    uint64_t rx_errors_ = 0;
+    int rx_errors_in_a_row_ = 0;  // without a frame between: the transport is broken
 };
 
 }  // namespace ugv::servo

@@ -11,6 +11,10 @@
 namespace ugv::canopen {
 namespace {
 
+// Room for what the velocity bound does not cover: encoder quantisation, receive-time jitter.
+constexpr double kPositionSlackRad = 0.5 * 3.14159265358979323846 / 180.0;
+constexpr double kVelocitySlackRadS = 0.05;
+
 std::string hex_address(SdoAddress at)
 {
     char buf[16];
@@ -107,6 +111,9 @@ void Drive::start(int64_t now_us)
     sent_rpdo1_.reset();
     sent_velocity_.reset();
     last_state_ = cia402::State::unknown;
+    last_tpdo1_reading_.reset();
+    holding_tpdo1_ = false;
+    frames_since_start_ = 0;
     counters_.fault_resets += enabler_.fault_resets();  // the fresh enabler counts from 0
     enabler_ = cia402::Enabler(config_.enabler);
     phase_ = Phase::configuring;
@@ -273,6 +280,7 @@ void Drive::on_tpdo1(uint16_t statusword, int32_t counts, int64_t now_us, int64_
 
 void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime)
 {
+    ++frames_since_start_;
     if (frame.extended || frame.rtr) return;
     if (sdo_.on_frame(frame, now_us, out_)) return;
     if (auto hb = decode_heartbeat(frame, node_)) {
@@ -294,12 +302,54 @@ void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime)
     }
     if (phase_ == Phase::idle || phase_ == Phase::failed || phase_ == Phase::configuring) return;
     if (auto v = unpack_pdo(tpdo2_, node_, frame)) {
-        velocity_rad_s_ = config_.units.to_rad_s(static_cast<double>(static_cast<int32_t>((*v)[0])));
+        const double velocity = config_.units.to_rad_s(static_cast<double>(static_cast<int32_t>((*v)[0])));
+        if (config_.check_tpdo_plausibility &&
+            std::fabs(velocity) > 2.0 * config_.max_velocity_rad_s + kVelocitySlackRadS) {
+            ++counters_.tpdo_implausible;
+            return;
+        }
+        velocity_rad_s_ = velocity;
         return;
     }
     if (auto v = unpack_pdo(tpdo1_, node_, frame)) {
-        on_tpdo1(static_cast<uint16_t>((*v)[0]), static_cast<int32_t>((*v)[1]), now_us, utime);
+        const auto statusword = static_cast<uint16_t>((*v)[0]);
+        const auto counts = static_cast<int32_t>((*v)[1]);
+        if (config_.check_tpdo_plausibility &&
+            !plausible_tpdo1({cia402::state_from_statusword(statusword), counts, utime}))
+            return;
+        on_tpdo1(statusword, counts, now_us, utime);
     }
+}
+
+double Drive::max_step_rad(double dt_s) const
+{
+    const double period_s = config_.sync_period_us > 0 ? static_cast<double>(config_.sync_period_us) * 1e-6
+                                                       : config_.tpdo_period_ms * 1e-3;
+    return 2.0 * config_.max_velocity_rad_s * std::max(dt_s, period_s) + kPositionSlackRad;
+}
+
+bool Drive::readings_agree(const Tpdo1Reading& earlier, const Tpdo1Reading& later) const
+{
+    if (earlier.state != later.state) return false;
+    const double dt_s = static_cast<double>(later.utime - earlier.utime) * 1e-6;
+    return std::fabs(config_.units.to_rad(later.counts) - config_.units.to_rad(earlier.counts)) <= max_step_rad(dt_s);
+}
+
+bool Drive::plausible_tpdo1(const Tpdo1Reading& reading)
+{
+    const auto previous = std::exchange(last_tpdo1_reading_, reading);
+    const bool previous_held = std::exchange(holding_tpdo1_, false);
+    // Agrees with what was last taken: the one held before it (if any) was wrong.
+    if (last_ && readings_agree({last_->state, last_->counts, last_->utime}, reading)) {
+        if (previous_held) ++counters_.tpdo_implausible;
+        return true;
+    }
+    // Agrees with the one before it: two in a row are a real change (a bit error does not
+    // repeat itself), e.g. each step of the enable walk, a fault, the very first TPDO.
+    if (previous && readings_agree(*previous, reading)) return true;
+    if (previous_held) ++counters_.tpdo_implausible;
+    holding_tpdo1_ = true;
+    return false;
 }
 
 void Drive::tick(int64_t now_us)

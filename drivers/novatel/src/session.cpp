@@ -95,47 +95,84 @@ Session::Reply Session::command(const std::string& text, const Decoder::Sink& si
     return pending_;
 }
 
+Session::Reply Session::unlogall_at(int baud, const Decoder::Sink& sink)
+{
+    if (baud != stream_.baud()) {
+        if (!stream_.set_baud(baud)) {
+            return Reply::timeout;  // the host cannot do this rate: nothing to hear there
+        }
+        decoder_.reset();
+    }
+    stream_.flush_input();
+    return command(unlogall_command(), sink);
+}
+
+Session::Reply Session::find_receiver(const Decoder::Sink& sink, std::string& tried)
+{
+    const int open_baud = stream_.baud();
+    // Twice at the open rate: on a noisy line one lost reply must not send us probing.
+    std::vector<int> rates{open_baud, open_baud};
+    // Perhaps still at the COM baud of an earlier run (the receiver kept its settings).
+    if (config_.com_baud > 0 && config_.com_baud != open_baud) {
+        rates.push_back(config_.com_baud);
+    }
+    for (const int b : config_.probe_bauds) {
+        if (std::find(rates.begin(), rates.end(), b) == rates.end()) {
+            rates.push_back(b);
+        }
+    }
+    for (const int baud : rates) {
+        const Reply r = unlogall_at(baud, sink);
+        if (baud != open_baud) {
+            tried += (tried.empty() ? "" : ", ") + std::to_string(baud);
+        }
+        if (r != Reply::timeout) {
+            if (r == Reply::ok) {
+                found_at_baud_ = baud;
+            }
+            return r;
+        }
+    }
+    stream_.set_baud(open_baud);
+    return Reply::timeout;
+}
+
 bool Session::start(const Decoder::Sink& sink)
 {
     ++counters_.starts;
     error_.clear();
+    found_at_baud_ = 0;
     decoder_.reset();
     last_frame_us_ = io::monotonic_us();  // the silence clock starts now
     if (!config_.configure) {
         return true;
     }
-    const std::string unlogall = unlogall_command();
-    stream_.flush_input();
-    Reply r = command(unlogall, sink);
     const int open_baud = stream_.baud();
-    const bool switch_baud = config_.com_baud > 0 && config_.com_baud != open_baud;
-    if (r == Reply::timeout && switch_baud) {
-        // Perhaps still at the COM baud of an earlier run (the receiver kept its settings).
-        if (stream_.set_baud(config_.com_baud)) {
-            stream_.flush_input();
-            decoder_.reset();
-            r = command(unlogall, sink);
-            if (r != Reply::ok) {
-                stream_.set_baud(open_baud);
-            }
-        }
-    }
+    std::string tried;
+    Reply r = find_receiver(sink, tried);
     if (r == Reply::closed) {
         return fail("device closed during configuration");
     }
     if (r != Reply::ok) {
-        return fail("UNLOGALL: " + std::string(r == Reply::error ? last_reply_ : "no reply"));
+        if (r == Reply::error) {
+            return fail("UNLOGALL: " + last_reply_);
+        }
+        return fail("UNLOGALL: no reply at the configured " + std::to_string(open_baud) + " baud" +
+                    (tried.empty() ? "" : " (nor at " + tried + ")"));
     }
-    if (config_.com_baud > 0 && config_.com_baud != stream_.baud()) {
+    const int wanted_baud = config_.com_baud > 0 ? config_.com_baud : open_baud;
+    if (found_at_baud_ != open_baud && found_at_baud_ != config_.com_baud) {
+        ++counters_.found_by_probing;
+    }
+    if (wanted_baud != stream_.baud()) {
         // The receiver answers at the old rate, then switches.
-        r = command(com_command(config_.com_baud), sink);
+        r = command(com_command(wanted_baud), sink);
         if (r != Reply::ok) {
-            return fail("COM " + std::to_string(config_.com_baud) + ": " +
-                        (r == Reply::error ? last_reply_ : "no reply"));
+            return fail("COM " + std::to_string(wanted_baud) + ": " + (r == Reply::error ? last_reply_ : "no reply"));
         }
         stream_.drain_output();
-        if (!stream_.set_baud(config_.com_baud)) {
-            return fail("host refused baud " + std::to_string(config_.com_baud) + ": " + stream_.last_error());
+        if (!stream_.set_baud(wanted_baud)) {
+            return fail("host refused baud " + std::to_string(wanted_baud) + ": " + stream_.last_error());
         }
         decoder_.reset();
     }
@@ -158,7 +195,9 @@ Session::Status Session::poll(int timeout_ms, const Decoder::Sink& sink)
         return r.status == io::ReadResult::Status::closed ? Status::closed : Status::error;
     }
     if (io::monotonic_us() - last_frame_us_ > config_.silence_timeout_us) {
-        error_ = "no valid frame for " + std::to_string(config_.silence_timeout_us / 1000) + " ms";
+        // At the wrong rate the port delivers bytes but never a frame: say which rate it was.
+        error_ = "no valid frame for " + std::to_string(config_.silence_timeout_us / 1000) + " ms at " +
+                 std::to_string(stream_.baud()) + " baud";
         return Status::silent;
     }
     return Status::ok;

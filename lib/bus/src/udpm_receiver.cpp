@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include <spdlog/spdlog.h>
+
 #include "ugv/bus/bus.hpp"
 #include "ugv/io/clock.hpp"
 
@@ -52,9 +54,18 @@ UdpmReceiver::UdpmReceiver(const UdpmUrl& url)
     // Every process on the host binds the same port, as liblcm's receivers do.
     if (::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) != 0) throw fail("SO_REUSEADDR");
     if (::setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof one) != 0) throw fail("SO_TIMESTAMP");
-    if (url.recv_buf_size > 0 &&
-        ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &url.recv_buf_size, sizeof url.recv_buf_size) != 0)
-        throw fail("SO_RCVBUF");
+    // The kernel buffer is all the queue there is between two drains (liblcm had a thread
+    // and a 1 MB ring behind it): ask for 2 MiB unless the URL says otherwise. The kernel
+    // caps the request at net.core.rmem_max, which the .deb raises (docs/deploy.md).
+    const int want = url.recv_buf_size > 0 ? url.recv_buf_size : kDefaultReceiveBufferBytes;
+    if (::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &want, sizeof want) != 0) throw fail("SO_RCVBUF");
+    int granted = 0;
+    socklen_t len = sizeof granted;
+    if (::getsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &granted, &len) == 0) receive_buffer_bytes_ = granted / 2;
+    if (receive_buffer_bytes_ < want)
+        spdlog::warn("{}: receive buffer {} kB of {} kB asked (net.core.rmem_max); bursts of large messages "
+                     "may be lost, see docs/deploy.md",
+                     where, receive_buffer_bytes_ / 1024, want / 1024);
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_addr.s_addr = htonl(INADDR_ANY);

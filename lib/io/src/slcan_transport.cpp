@@ -1,5 +1,8 @@
 #include "slcan_transport.hpp"
 
+#include <chrono>
+#include <thread>
+
 #include "ugv/io/clock.hpp"
 
 namespace ugv::io {
@@ -27,8 +30,13 @@ bool SlcanTransport::open()
         return false;
     }
     // Close first: an adapter left open from a previous run refuses S<n>. Its answer (BEL
-    // when it was already closed) does not matter.
+    // when it was already closed) does not matter -- but a late one must not be read as the
+    // answer to S<n> (or later as a bus error), nor may an answer to the C of the last
+    // close() still waiting in the port: wait a little, then drop whatever came.
     command(slcan::close_command(), 200);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    port_.flush_input();
+    decoder_ = slcan::Decoder{};
     if (!command(*rate, 500) || !command(slcan::open_command(), 500)) {
         if (error_.empty()) error_ = describe() + ": the adapter did not accept the set-up";
         port_.close();

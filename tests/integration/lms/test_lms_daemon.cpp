@@ -5,100 +5,19 @@
 // published; a bad config value -> exit 2.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
 
-#include <ugv/daemon_status_t.hpp>
-#include <ugv/laser_scan_t.hpp>
-#include <ugv/raw_bytes_t.hpp>
-
-#include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
-#include "ugv_test/process.hpp"
+#include "lms_rig.hpp"
 
 using namespace ugv::test;
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-class Listener
-{
-public:
-    explicit Listener(const std::string& url) : bus_(ugv::bus::open_live(url))
-    {
-        ugv::bus::subscribe<ugv::laser_scan_t>(*bus_, "LMS_SCAN",
-                                               [this](const std::string&, const ugv::laser_scan_t& m, int64_t recv) {
-                                                   scans.push_back(m);
-                                                   recv_utime.push_back(recv);
-                                               });
-        ugv::bus::subscribe<ugv::daemon_status_t>(*bus_, "STATUS_LMS",
-                                                  [this](const std::string&, const ugv::daemon_status_t& m, int64_t) {
-                                                      status = m;
-                                                      ++statuses;
-                                                  });
-        ugv::bus::subscribe<ugv::raw_bytes_t>(*bus_, "RAW_LMS", [this](const std::string&, const ugv::raw_bytes_t& m, int64_t) {
-            if (m.direction == ugv::raw_bytes_t::DIRECTION_TO_DEVICE)
-                raw_to_device.insert(raw_to_device.end(), m.data.begin(), m.data.end());
-            else
-                raw_from_device += m.data.size();
-        });
-    }
-    template <typename Pred>
-    bool until(Pred pred, double timeout_s)
-    {
-        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-        while (!pred() && std::chrono::steady_clock::now() < end) bus_->handle(20);
-        return pred();
-    }
-    void for_seconds(double s)
-    {
-        until([] { return false; }, s);
-    }
-    int64_t counter(const std::string& name) const
-    {
-        for (int i = 0; i < status.ncounters; ++i)
-            if (status.counter_names[static_cast<std::size_t>(i)] == name)
-                return status.counter_values[static_cast<std::size_t>(i)];
-        return -1;
-    }
-
-    std::vector<ugv::laser_scan_t> scans;
-    std::vector<int64_t> recv_utime;
-    ugv::daemon_status_t status{};
-    int statuses = 0;
-    std::vector<uint8_t> raw_to_device;
-    std::size_t raw_from_device = 0;
-
-private:
-    std::unique_ptr<ugv::bus::Bus> bus_;
-};
-
-std::unique_ptr<Process> start_emulator(const TempDir& dir, const std::string& pty, const std::string& tag,
-                                        std::vector<std::string> extra = {})
-{
-    std::vector<std::string> args = {bin("ugv-sim"), "lms", "--pty", pty, "--height", "1.0", "--pitch-deg", "10"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    auto p = std::make_unique<Process>(args, dir / ("sim-" + tag + ".out"), dir / ("sim-" + tag + ".err"));
-    REQUIRE(wait_until([&] { return std::filesystem::exists(pty); }, 10.0));
-    return p;
-}
-
-std::string config_text(const std::string& pty, const std::string& extra = "")
-{
-    return "device = \"" + pty + "\"\nbaud = 500000\nangle_deg = 180\nresolution_deg = 0.5\nunits = \"mm\"\n" +
-           "sensor_id = \"front\"\n" + extra;
-}
-
-bool contains(const std::vector<uint8_t>& hay, const std::vector<uint8_t>& needle)
-{
-    return std::search(hay.begin(), hay.end(), needle.begin(), needle.end()) != hay.end();
-}
-
-}  // namespace
+using ugv::test::lms::contains;
+using ugv::test::lms::config_text;
+using ugv::test::lms::kPi;
+using ugv::test::lms::Listener;
+using ugv::test::lms::start_emulator;
 
 TEST_CASE("ugv-lms: handshake 9600 -> 500000, 37.5 Hz scans, restart of the device, clean stop", "[lms][integration]")
 {

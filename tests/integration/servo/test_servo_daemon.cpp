@@ -1,14 +1,19 @@
 // ugv-servo drives the emulated CiA 402 drive (ugv-sim servo) through slcan on a pty: it
 // reaches Operation Enabled and nods; a fault raised mid-nod is reset and the nod resumes;
-// the counters say so; SIGTERM halts, disables and exits 0.
+// the counters say so; SIGTERM halts, disables and exits 0. Then the line faults of issue 11:
+// bit errors, cut lines, garbage, BEL refusals and a bus at another bitrate.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <numbers>
+#include <vector>
 
 #include "ugv/bus/typed.hpp"
 #include "ugv/daemon_status_t.hpp"
@@ -187,6 +192,7 @@ TEST_CASE("ugv-servo recovers from a heartbeat loss and from bus-off, reporting 
     REQUIRE_LOGGED(watch.until([&] { return std::fabs(watch.states.back().angle - 5 * kDeg) < 0.2 * kDeg; }, 10.0));
 
     sim.signal(SIGUSR2);  // the node drops off the bus for 2.5 s
+    const auto node_back = std::chrono::steady_clock::now() + std::chrono::milliseconds(2500);
     watch.status.clear();
     REQUIRE_LOGGED(watch.until([&] {
         return !watch.status.empty() && watch.status.back().state == daemon_status_t::STATE_DEGRADED;
@@ -198,6 +204,8 @@ TEST_CASE("ugv-servo recovers from a heartbeat loss and from bus-off, reporting 
         return !watch.status.empty() && watch.status.back().state == daemon_status_t::STATE_RUNNING;
     }, 15.0));
     CHECK(counter(watch.status.back(), "reinits") >= 1);
+    std::printf("servo heartbeat back (node off the bus 2.5 s): RUNNING reported %.2f s after the node returned\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - node_back).count());
     watch.states.clear();
     REQUIRE_LOGGED(watch.until([&] { return watch.states.size() > 10; }, 5.0));
     CHECK(watch.states.back().angle == Approx(5 * kDeg).margin(0.3 * kDeg));
@@ -232,4 +240,180 @@ TEST_CASE("ugv-servo rejects a bad configuration with one line and exit status 2
     test::write_file(dir / "bad2.toml", "transport = \"carrier-pigeon:0\"\n");
     CHECK(test::run({test::bin("ugv-servo"), "--config", dir / "bad2.toml"}, dir / "out", dir / "err", 20.0) == 2);
     CHECK(test::read_file(dir / "err").find("transport") != std::string::npos);
+}
+
+// Device faults on the slcan line (issue 11). The adapter's ASCII lines carry no checksum, so
+// the daemon must drop malformed lines (rx_errors) without restarting the interface, and its
+// TPDO plausibility check (state confirmed by two TPDOs, position within what the axis can
+// move) keeps a bit error that leaves a well-formed but wrong frame off SERVO_STATE.
+namespace {
+
+// The nod every fault case runs: 0-20 deg at 40 deg/s, the velocity cap at 60 deg/s (so the
+// plausibility bound is 2 x 60 deg/s x 10 ms + 0.5 deg = 1.7 deg per TPDO period).
+const char* kFaultCaseConfig =
+    "bitrate = 500000\nnode_id = 3\nmin_tilt_deg = -10.0\nmax_tilt_deg = 40.0\nmax_rate_deg_s = 60.0\n"
+    "heartbeat_ms = 300\nsdo_timeout_ms = 500\n"
+    "[profile]\nkind = \"CONSTANT_RATE\"\nnod_min_deg = 0.0\nnod_max_deg = 20.0\nrate_deg_s = 40.0\n";
+
+struct FaultRun
+{
+    test::TempDir dir;
+    std::string pty = dir / "servo.pty";
+    std::unique_ptr<test::Process> sim;
+    std::unique_ptr<Watch> watch;
+    std::unique_ptr<test::Process> servo;
+
+    FaultRun(int port, const std::vector<std::string>& sim_faults)
+    {
+        start_sim(sim_faults);
+        test::write_file(dir / "servo.toml", "transport = \"slcan:" + pty + "\"\n" + kFaultCaseConfig);
+        const std::string url = test::lcm_url(port);
+        watch = std::make_unique<Watch>(url);
+        servo = std::make_unique<test::Process>(
+            std::vector<std::string>{test::bin("ugv-servo"), "--config", dir / "servo.toml", "--lcm-url", url},
+            dir / "servo.out", dir / "servo.err");
+    }
+    // A new emulator (the adapter unplugged and another one plugged in).
+    void start_sim(const std::vector<std::string>& faults)
+    {
+        if (sim) {
+            sim->signal(SIGKILL);
+            sim->wait_exit(5.0);
+        }
+        std::vector<std::string> args{test::bin("ugv-sim"), "servo", "--pty", pty, "--node-id", "3"};
+        args.insert(args.end(), faults.begin(), faults.end());
+        sim = std::make_unique<test::Process>(args, dir / "sim.out", dir / "sim.err");
+        REQUIRE(test::wait_until([&] { return std::filesystem::exists(pty); }, 10.0));
+    }
+    std::string logs() const { return "\nugv-servo stderr:\n" + servo->err() + "\nugv-sim stderr:\n" + sim->err(); }
+    bool operation_enabled()
+    {
+        return !watch->states.empty() && watch->states.back().cia402_state == servo_state_t::STATE_OPERATION_ENABLED;
+    }
+};
+
+// Every published angle inside the nod (0-20 deg, with the position loop's overshoot) and no
+// step between two published samples larger than the axis can move: no corrupted position.
+void check_nod_is_clean(const std::vector<servo_state_t>& states)
+{
+    int outside = 0, jumps = 0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        if (states[i].angle < -2 * kDeg || states[i].angle > 22 * kDeg) ++outside;
+        if (i == 0) continue;
+        const double dt = std::max(static_cast<double>(states[i].utime - states[i - 1].utime) * 1e-6, 0.01);
+        if (std::fabs(states[i].angle - states[i - 1].angle) > 2 * 60 * kDeg * dt + 0.5 * kDeg) ++jumps;
+        CHECK(states[i].seq == states[i - 1].seq + 1);
+    }
+    CHECK(outside == 0);
+    CHECK(jumps == 0);
+    const auto [lo, hi] = angle_range(states);
+    CHECK(hi - lo > 8 * kDeg);  // still nodding
+    for (const auto& s : states) {
+        CHECK(!s.fault);
+        if (s.fault) break;
+    }
+}
+
+void run_with_line_faults(int port, const std::vector<std::string>& faults, const char* what)
+{
+    FaultRun run(port, faults);
+    if (!run.watch->until([&] { return run.operation_enabled(); }, 40.0)) FAIL("never enabled" << run.logs());
+    const auto nod = run.watch->collect(4.0);
+    REQUIRE(nod.size() >= 200);
+    check_nod_is_clean(nod);
+    run.watch->status.clear();
+    if (!run.watch->until([&] { return !run.watch->status.empty() &&
+                                       run.watch->status.back().state == daemon_status_t::STATE_RUNNING; }, 20.0))
+        FAIL("not RUNNING" << run.logs());
+    const daemon_status_t st = run.watch->status.back();
+    CHECK(counter(st, "rx_errors") > 0);
+    CHECK(counter(st, "faults") == 0);
+    CHECK(counter(st, "bus_errors") == 0);
+    std::printf("servo %s: %zu states in 4 s, rx_errors %lld, tpdo_implausible %lld, reinits %lld, sdo_timeouts %lld, "
+                "reconnects %lld\n",
+                what, nod.size(), static_cast<long long>(counter(st, "rx_errors")),
+                static_cast<long long>(counter(st, "tpdo_implausible")), static_cast<long long>(counter(st, "reinits")),
+                static_cast<long long>(counter(st, "sdo_timeouts")), static_cast<long long>(counter(st, "reconnects")));
+    run.servo->signal(SIGTERM);
+    CHECK(run.servo->wait_exit(5.0) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("ugv-servo with bit errors at 1e-3 per byte on the slcan line: nothing corrupt published, nods on")
+{
+    run_with_line_faults(7852, {"--bit-error-rate", "0.001", "--seed", "5"}, "bit errors 1e-3");
+}
+
+TEST_CASE("ugv-servo with bit errors at 1e-2 per byte on the slcan line: nothing corrupt published, nods on")
+{
+    run_with_line_faults(7853, {"--bit-error-rate", "0.01", "--seed", "5"}, "bit errors 1e-2");
+}
+
+TEST_CASE("ugv-servo with slcan lines cut short before their CR: dropped and counted, nods on")
+{
+    run_with_line_faults(7854, {"--truncate-every", "25", "--seed", "6"}, "every 25th frame line truncated");
+}
+
+TEST_CASE("ugv-servo with garbage bytes between slcan lines: dropped and counted, nods on")
+{
+    run_with_line_faults(7855, {"--garbage-every", "0.2", "--garbage-bytes", "24", "--seed", "7"},
+                         "24 garbage bytes every 0.2 s");
+}
+
+TEST_CASE("ugv-servo when the adapter refuses transmits with BEL: counted, logged, the interface restarted, nods on")
+{
+    FaultRun run(7856, {"--refuse-tx-every", "400"});
+    if (!run.watch->until([&] { return run.operation_enabled(); }, 20.0)) FAIL("never enabled" << run.logs());
+    run.watch->states.clear();
+    // At ~100 transmits a second, a refusal every few seconds: each one is a restart of the
+    // interface (C, S6, O) and of the drive session.
+    if (!run.watch->until([&] { return !run.watch->status.empty() && counter(run.watch->status.back(), "reconnects") >= 1 &&
+                                       counter(run.watch->status.back(), "bus_errors") >= 1 &&
+                                       run.watch->status.back().state == daemon_status_t::STATE_RUNNING; }, 30.0))
+        FAIL("no BEL counted, or not back" << run.logs());
+    const std::size_t before = run.watch->states.size();
+    if (!run.watch->until([&] { return run.watch->states.size() > before + 200; }, 10.0)) FAIL("no nod" << run.logs());
+    // The outage: the longest gap between two SERVO_STATEs.
+    const auto& states = run.watch->states;
+    int64_t gap_us = 0;
+    for (std::size_t i = 1; i < states.size(); ++i) gap_us = std::max(gap_us, states[i].utime - states[i - 1].utime);
+    std::printf("servo BEL to a transmit: SERVO_STATE interrupted for %.2f s at most (restart of the interface)\n",
+                static_cast<double>(gap_us) * 1e-6);
+    const std::vector<servo_state_t> last(states.end() - 200, states.end());
+    const auto [lo, hi] = angle_range(last);
+    CHECK(hi - lo > 8 * kDeg);
+    CHECK(run.servo->err().find("bus error: adapter error (BEL)") != std::string::npos);
+    run.servo->signal(SIGTERM);
+    CHECK(run.servo->wait_exit(5.0) == 0);
+}
+
+TEST_CASE("ugv-servo on a bus at another bitrate: DEGRADED naming the bitrate, nothing published, back when it matches")
+{
+    FaultRun run(7857, {"--bus-bitrate", "250000"});
+    if (!run.watch->until([&] { return !run.watch->status.empty() &&
+                                       run.watch->status.back().state == daemon_status_t::STATE_DEGRADED &&
+                                       run.watch->status.back().last_error.find("at 500000 bit/s") != std::string::npos; },
+                          20.0))
+        FAIL("no DEGRADED naming the bitrate" << run.logs());
+    const std::string why = run.watch->status.back().last_error;
+    INFO(why);
+    CHECK(why.find("nothing received from the bus") != std::string::npos);
+    CHECK(why.find("node_id 3") != std::string::npos);
+    CHECK(run.watch->states.empty());
+    CHECK(run.servo->running());
+    CHECK(run.servo->err().find("nothing received from the bus at 500000 bit/s") != std::string::npos);
+
+    // The bus set to 500 kbit/s (another adapter plugged in): the daemon reopens and enables.
+    run.start_sim({});
+    const auto back = std::chrono::steady_clock::now();
+    if (!run.watch->until([&] { return run.operation_enabled(); }, 20.0)) FAIL("never enabled" << run.logs());
+    const double enabled_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count();
+    if (!run.watch->until([&] { return !run.watch->status.empty() &&
+                                       run.watch->status.back().state == daemon_status_t::STATE_RUNNING; }, 20.0))
+        FAIL("not RUNNING" << run.logs());
+    std::printf("servo bitrate fixed: Operation Enabled %.2f s after the adapter came back, RUNNING reported %.2f s\n",
+                enabled_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - back).count());
+    run.servo->signal(SIGTERM);
+    CHECK(run.servo->wait_exit(5.0) == 0);
 }

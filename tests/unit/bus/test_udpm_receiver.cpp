@@ -8,7 +8,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -148,4 +150,15 @@ TEST_CASE("udpm receiver: an address that is not multicast is refused with one l
     CHECK_THROWS_WITH(UdpmReceiver(u), "udpm 10.0.0.1:7643: '10.0.0.1' is not an IPv4 multicast address");
     u.group = "not-an-address";
     CHECK_THROWS_AS(UdpmReceiver(u), ugv::bus::BusError);
+}
+
+TEST_CASE("udpm receiver: asks for a 2 MiB receive buffer (or the URL's) and gets what rmem_max allows")
+{
+    std::ifstream f("/proc/sys/net/core/rmem_max");
+    long rmem_max = 0;
+    REQUIRE(f >> rmem_max);
+    UdpmReceiver by_default(*parse_udpm_url(ugv::test::lcm_url(7644)));
+    CHECK(by_default.receive_buffer_bytes() == std::min<long>(2L << 20, rmem_max));
+    UdpmReceiver asked(*parse_udpm_url(ugv::test::lcm_url(7644) + "&recv_buf_size=100000"));
+    CHECK(asked.receive_buffer_bytes() == std::min<long>(100000, rmem_max));
 }

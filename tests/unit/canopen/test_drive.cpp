@@ -289,3 +289,73 @@ TEST_CASE("Drive: with a SYNC period it produces SYNC and maps the TPDOs to tran
     }
     CHECK(syncs == 5);  // 50 ms at 10 ms
 }
+
+TEST_CASE("Drive with the plausibility check drops a TPDO that one bit error made wrong, and confirms real changes")
+{
+    DriveConfig c = test_config();
+    c.check_tpdo_plausibility = true;  // bound per 10 ms: 2 x 3 rad/s x 0.01 s + 0.5 deg = 448 counts
+    Drive d(c);
+    int64_t now = 0;
+    d.start(now);
+    answer_configuration(d, now);
+    d.tick(now);
+    // Each state of the walk arrives twice (two TPDO periods), as a real drive's does.
+    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237}) {
+        for (int k = 0; k < 2; ++k) {
+            d.on_frame(frame(tpdo1(sw, 1000)), now, now);
+            d.on_frame(frame("702#05"), now, now);
+            now += 10'000;
+            d.tick(now);
+        }
+    }
+    REQUIRE(d.operational());
+    CHECK(d.counters().tpdo_implausible == 0);  // each new state waited for its second TPDO
+    d.take_samples();
+    auto feed = [&](uint16_t sw, int32_t counts) {
+        d.on_frame(frame(tpdo1(sw, counts)), now, now);
+        now += 10'000;
+        d.tick(now);
+        return d.take_samples();
+    };
+    CHECK(feed(0x0237, 1050).size() == 1);
+    CHECK(feed(0x0237, 1050 + 0x10000).empty());  // a flipped hex digit in byte 2: 10 rad away
+    const auto good = feed(0x0237, 1100);          // agrees with the last one taken
+    REQUIRE(good.size() == 1);
+    CHECK(good[0].counts == 1100);
+    CHECK(d.counters().tpdo_implausible == 1);
+    CHECK(feed(0x023F, 1150).empty());  // '7' -> 'F': the fault bit, once
+    CHECK(d.counters().faults == 0);
+    CHECK(d.operational());
+    CHECK(feed(0x0237, 1200).size() == 1);
+    CHECK(d.counters().tpdo_implausible == 2);
+    // A real fault is reported by every TPDO from then on: the second one confirms it.
+    CHECK(feed(0x0218, 1200).empty());
+    CHECK(d.operational());
+    const auto fault = feed(0x0218, 1200);
+    REQUIRE(fault.size() == 1);
+    CHECK(fault[0].state == cia402::State::fault);
+    CHECK(d.counters().faults == 1);
+    CHECK(d.counters().tpdo_implausible == 2);
+    CHECK(d.phase() == Drive::Phase::enabling);
+    // A TPDO2 velocity beyond twice the cap (3 rad/s) is dropped: the sample keeps the last.
+    d.on_frame(frame("282#C8000000"), now, now);  // 200 counts/s
+    d.on_frame(frame("282#00001000"), now, now);  // 1048576 counts/s = 161 rad/s
+    CHECK(d.counters().tpdo_implausible == 3);
+    const auto after = feed(0x0218, 1200);
+    REQUIRE(after.size() == 1);
+    CHECK(after[0].velocity_rad_s == Approx(200.0 / 40960.0 * 2 * std::numbers::pi));
+}
+
+TEST_CASE("Drive without the plausibility check takes every TPDO as it comes (CAN frames are CRC-checked)")
+{
+    Drive d(test_config());
+    int64_t now = 0;
+    bring_up(d, now, 1000);
+    REQUIRE(d.operational());
+    d.take_samples();
+    d.on_frame(frame(tpdo1(0x0237, 1000 + 0x10000)), now, now);
+    const auto s = d.take_samples();
+    REQUIRE(s.size() == 1);
+    CHECK(s[0].counts == 1000 + 0x10000);
+    CHECK(d.counters().tpdo_implausible == 0);
+}

@@ -126,3 +126,29 @@ TEST_CASE("emulator: attitude in device convention, silence and garbage", "[gx1]
     emu.inject_garbage(100);
     CHECK(emu.output().size() == 100);
 }
+
+TEST_CASE("emulator: every n-th streamed frame cut short, the rest whole", "[gx1][emulator]")
+{
+    EmulatorConfig ec;
+    ec.timing.words = {4, 10, 250, 10};  // 10 ms
+    ec.rate_hz = 25;                     // 4 ticks
+    Gx1Emulator emu(ec, 100.0);
+    emu.set_truncate_every(5);
+    send(emu, encode_start_continuous(0x0E), 101.0);
+    emu.advance(102.0);
+    CHECK(emu.counters().frames_streamed == 25);
+    CHECK(emu.counters().frames_truncated == 5);
+    // 1 echo + 25 frames of 11 bytes, five of them cut to 1..10 bytes.
+    CHECK(emu.output().size() < 7 + 25 * 11);
+    CHECK(emu.output().size() >= 7 + 20 * 11 + 5);
+    auto frames = drain(emu);
+    REQUIRE(frames.size() == 1 + 20);  // the parser finds every whole one after a cut one
+    // Frames 5, 10, 15, 20, 25 are missing: the ticks jump by 8 after every fourth.
+    int jumps = 0;
+    for (std::size_t i = 2; i < frames.size(); ++i) {
+        const int step = frames[i].ticks() - frames[i - 1].ticks();
+        CHECK((step == 4 || step == 8));
+        jumps += step == 8;
+    }
+    CHECK(jumps == 4);  // the fifth missing frame is the last one
+}

@@ -122,6 +122,98 @@ TEST_CASE("emulator: preconfigured NMEA output, silence and garbage faults")
     CHECK(silent.size() == 2 * 40);                  // only garbage while silent
 }
 
+namespace {
+
+// 10 s of a preconfigured NovAtel receiver (BESTPOSB + BESTVELB at 20 Hz, no noise).
+EmulatorConfig binary_20hz()
+{
+    EmulatorConfig c;
+    c.preconfigured = true;
+    c.rate_hz = 20;
+    c.noise_scale = 0;
+    c.seed = 3;
+    return c;
+}
+
+uint64_t pos_and_vel_frames(Decoder& d, const std::string& out)
+{
+    uint64_t n = 0;
+    const auto b = bytes(out);
+    d.feed(b.data(), b.size(), 0, [&](const Decoded& m) {
+        n += std::holds_alternative<Position>(m.message) || std::holds_alternative<Velocity>(m.message);
+    });
+    return n;
+}
+
+std::string ten_seconds(GpsEmulator& e)
+{
+    std::string out;
+    for (int64_t t = kStart; t < kStart + 10'000'000; t += 10'000) out += e.tick(t);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("emulator: bit errors per byte damage that share of bytes; every frame that still decodes is exact")
+{
+    for (const double rate : {1e-3, 1e-2}) {
+        INFO("rate " << rate);
+        EmulatorConfig c = binary_20hz();
+        c.bit_error_rate = rate;
+        GpsEmulator e(c, kStart);
+        const std::string out = ten_seconds(e);
+        // 200 BESTPOSB (104 bytes) + 200 BESTVELB (76 bytes).
+        const double share = static_cast<double>(e.bytes_damaged()) / static_cast<double>(out.size());
+        CHECK(share > 0.6 * rate);
+        CHECK(share < 1.4 * rate);
+        Decoder d;
+        std::size_t fixes = 0;
+        const auto b = bytes(out);
+        d.feed(b.data(), b.size(), 0, [&](const Decoded& m) {
+            const auto* p = std::get_if<Position>(&m.message);
+            if (p == nullptr) return;
+            ++fixes;
+            REQUIRE(p->latitude_deg == c.latitude_deg);
+            REQUIRE(p->longitude_deg == c.longitude_deg);
+            REQUIRE(p->height_msl_m == c.height_msl_m);
+        });
+        CHECK(d.splitter_counters().crc_errors > 0);
+        // 104 bytes survive 1e-3 with p = 0.90 and 1e-2 with p = 0.35.
+        const std::size_t expected = rate == 1e-3 ? 180 : 70;
+        CHECK(fixes > expected * 7 / 10);
+        CHECK(fixes < expected * 13 / 10);
+    }
+    // A reply is damaged too: with every byte hit, "<OK" no longer reads as one.
+    EmulatorConfig c;
+    c.bit_error_rate = 1.0;
+    GpsEmulator e(c, kStart);
+    CHECK(send(e, "UNLOGALL\r\n").find("<OK") == std::string::npos);
+    CHECK(e.bytes_damaged() > 0);
+}
+
+TEST_CASE("emulator: truncated frames never decode, and the frame after each one does")
+{
+    EmulatorConfig c = binary_20hz();
+    c.truncate_probability = 0.2;
+    GpsEmulator e(c, kStart);
+    const std::string out = ten_seconds(e);
+    const uint64_t cut = e.frames_truncated();
+    CHECK(cut > 40);
+    CHECK(cut < 120);
+    Decoder d;
+    const uint64_t frames = pos_and_vel_frames(d, out);
+    GpsEmulator clean(binary_20hz(), kStart);
+    Decoder d_clean;
+    const uint64_t sent = pos_and_vel_frames(d_clean, ten_seconds(clean));
+    CHECK(sent >= 396);  // 20 Hz x 2 logs x 10 s, less the first period
+    CHECK(frames + cut >= sent - 1);  // the last cut frame may still wait for its claimed length
+    CHECK(frames + cut <= sent);
+    // A cut frame fails its CRC once its claimed length has arrived (or breaks the sync or
+    // the length when cut inside them) and is skipped; cut frames in a row skip as one run.
+    CHECK(d.splitter_counters().crc_errors > cut / 2);
+    CHECK(d.splitter_counters().resyncs > cut / 2);
+}
+
 TEST_CASE("parse_script rejects unknown position types")
 {
     CHECK_THROWS_AS(parse_script("SINGLE@0,BOGUS@3"), std::invalid_argument);

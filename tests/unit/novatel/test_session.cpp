@@ -108,6 +108,49 @@ TEST_CASE("session configure: COM switches receiver and host; a restart finds th
     CHECK(poll_until(again, r, [&] { return r.positions >= before + 3; }));
 }
 
+TEST_CASE("session configure: a receiver left at another rate is found by probing and set back with COM")
+{
+    EmulatorConfig ec;
+    ec.baud = 57600;
+    ec.noise_scale = 0;
+    GpsEmulator emu(ec, ugv::io::now_utime());
+    EmulatorStream stream(emu, 9600);
+    Decoder decoder;
+    auto cfg = configure_logs({{"bestposb", 0.05}});
+    cfg.reply_timeout_ms = 200;
+    cfg.probe_bauds = {9600, 19200, 57600, 115200};
+    Session session(stream, decoder, cfg);
+    Received r;
+    REQUIRE(session.start(r.sink()));
+    CHECK(session.found_at_baud() == 57600);
+    CHECK(session.counters().found_by_probing == 1);
+    // Both sides back at the configured rate, and the logs flow there.
+    CHECK(emu.baud() == 9600);
+    CHECK(stream.baud() == 9600);
+    // UNLOGALL twice at 9600, at 19200, at 57600 (answered), COM 9600, LOG.
+    CHECK(session.counters().commands_sent == 6);
+    CHECK(poll_until(session, r, [&] { return r.positions >= 3; }));
+}
+
+TEST_CASE("session configure: no answer at any rate names the configured rate and the probed ones")
+{
+    EmulatorConfig ec;
+    ec.baud = 38400;
+    GpsEmulator emu(ec, ugv::io::now_utime());
+    EmulatorStream stream(emu, 9600);
+    Decoder decoder;
+    auto cfg = configure_logs({{"bestposb", 0.05}});
+    cfg.reply_timeout_ms = 100;
+    cfg.probe_bauds = {19200, 115200};
+    Session session(stream, decoder, cfg);
+    Received r;
+    REQUIRE_FALSE(session.start(r.sink()));
+    CHECK(session.error() == "UNLOGALL: no reply at the configured 9600 baud (nor at 19200, 115200)");
+    CHECK(session.found_at_baud() == 0);
+    CHECK(stream.baud() == 9600);  // left where it was opened
+    CHECK(r.positions == 0);
+}
+
 TEST_CASE("session passive: sends nothing and reads a receiver configured by someone else (NMEA)")
 {
     EmulatorConfig ec;

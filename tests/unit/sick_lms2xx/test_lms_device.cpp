@@ -218,6 +218,106 @@ TEST_CASE("emulator: bit flips and garbage are caught by the CRC", "[lms][emulat
     CHECK(good < 60);
 }
 
+namespace {
+
+// 2 s of streaming at 500000 baud from a device with these faults: the bytes it sent.
+Bytes stream_2s(sim::LmsDevice& d)
+{
+    ask(d, request_start_streaming(), 500000, 0);
+    Bytes out;
+    for (int64_t t = 0; t <= 2'000'000; t += 1000) d.tick(t, 500000, out);
+    return out;
+}
+
+sim::DeviceOptions at_500000(const sim::Faults& faults)
+{
+    sim::DeviceOptions o;
+    o.initial_baud = 500000;
+    o.faults = faults;
+    o.seed = 11;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("emulator: bit errors per byte damage that share of bytes, and only damaged scans fail", "[lms][emulator]")
+{
+    sim::LmsDevice clean(at_500000({}));
+    const Reply reference = parse(stream_2s(clean));
+    REQUIRE(reference.raws.size() == 75);
+    const Bytes& intact = reference.raws.back();  // every scan of the static floor is the same
+
+    for (const double rate : {1e-3, 1e-2}) {
+        INFO("rate " << rate);
+        sim::Faults f;
+        f.bit_error_rate = rate;
+        sim::LmsDevice d(at_500000(f));
+        const Bytes out = stream_2s(d);
+        // 75 scans of 732 bytes.
+        const double share = static_cast<double>(d.stats().bytes_damaged) / static_cast<double>(out.size());
+        CHECK(share > 0.6 * rate);
+        CHECK(share < 1.4 * rate);
+        Decoder dec;
+        int good_scans = 0;
+        dec.feed(out.data(), out.size(), [&](const DecoderEvent& ev) {
+            if (ev.kind != K::telegram || ev.telegram.command != cmd::scan) return;
+            ++good_scans;
+            REQUIRE(Bytes(ev.telegram.raw.begin(), ev.telegram.raw.end()) == intact);
+        });
+        CHECK(dec.stats().crc_errors + dec.stats().resyncs > 0);
+        // 732 bytes survive 1e-3 with p = 0.48 and 1e-2 with p = 0.0006.
+        if (rate == 1e-3) {
+            CHECK(good_scans >= 20);
+            CHECK(good_scans <= 55);
+        } else {
+            CHECK(good_scans <= 2);
+        }
+    }
+}
+
+TEST_CASE("the LMS checksum misses bits b and b + 1 flipped in adjacent bytes (why 1e-2 lets some through)",
+          "[lms][emulator]")
+{
+    sim::LmsDevice clean(at_500000({}));
+    const Bytes intact = parse(stream_2s(clean)).raws.back();
+    for (const std::size_t at : {std::size_t{7}, std::size_t{300}, intact.size() - 5}) {  // at + 2 still checked
+        for (int b = 0; b < 7; ++b) {
+            Bytes damaged = intact;
+            damaged[at] ^= static_cast<uint8_t>(1u << b);
+            damaged[at + 1] ^= static_cast<uint8_t>(1u << (b + 1));
+            INFO("bytes " << at << ", " << at + 1 << ", bits " << b << ", " << b + 1);
+            const Reply r = parse(damaged);
+            REQUIRE(r.raws.size() == 1);
+            CHECK(r.raws[0] == damaged);
+        }
+    }
+}
+
+TEST_CASE("emulator: truncated scans never decode, and the scan after each one does", "[lms][emulator]")
+{
+    sim::Faults f;
+    f.truncate_probability = 0.3;
+    sim::LmsDevice d(at_500000(f));
+    const Bytes out = stream_2s(d);
+    const uint64_t cut = d.stats().scans_truncated;
+    CHECK(cut >= 10);
+    CHECK(cut <= 40);
+    REQUIRE(d.stats().scans_sent == 75);
+    Decoder dec;
+    uint64_t good_scans = 0;
+    dec.feed(out.data(), out.size(), [&](const DecoderEvent& ev) {
+        good_scans += ev.kind == K::telegram && ev.telegram.command == cmd::scan && ev.telegram.raw.size() == 732;
+    });
+    // All but the cut ones; the last good scan may be held back when a false frame start
+    // inside the rejected bytes claims more than the stream has left.
+    CHECK(good_scans + cut <= 75);
+    CHECK(good_scans + cut >= 74);
+    // Each cut frame claims 732 bytes and fails its CRC once the next frame has arrived (the
+    // last one may still be waiting for bytes).
+    CHECK(dec.stats().crc_errors + 1 >= cut);
+    CHECK(dec.stats().crc_errors <= cut);
+}
+
 TEST_CASE("emulator: silence windows", "[lms][emulator]")
 {
     sim::DeviceOptions o;
@@ -248,7 +348,13 @@ TEST_CASE("emulator: --fault flags", "[lms][emulator]")
     sim::add_fault("disappear:3", plan);
     CHECK(plan.disappear_after_s == 3.0);
     CHECK(plan.disappear_for_s == 1.0);
-    CHECK_THROWS_WITH(sim::add_fault("smoke", plan), "--fault smoke: unknown fault (garbage, bitflip, silence, disappear)");
+    sim::add_fault("ber:0.01", plan);
+    CHECK(plan.device.bit_error_rate == 0.01);
+    sim::add_fault("truncate", plan);
+    CHECK(plan.device.truncate_probability == 0.1);
+    CHECK_THROWS_WITH(sim::add_fault("smoke", plan),
+                      "--fault smoke: unknown fault (garbage, bitflip, ber, truncate, silence, disappear)");
+    CHECK_THROWS(sim::add_fault("ber:1.5", plan));
     CHECK_THROWS(sim::add_fault("garbage:2", plan));
     CHECK_THROWS(sim::add_fault("garbage:x", plan));
     CHECK_THROWS(sim::add_fault("silence:1:2", plan));  // silent longer than the period

@@ -74,6 +74,11 @@ int gps_main(int argc, char** argv)
     app.add_option("--garbage-period", cfg.garbage_period_s, "a burst of random bytes every S seconds");
     app.add_option("--silence-at", cfg.silence_at_s, "stop sending at S seconds after start ...");
     app.add_option("--silence-for", cfg.silence_for_s, "... for S seconds");
+    app.add_option("--bit-error-rate", cfg.bit_error_rate, "one bit flipped in each byte sent with probability P")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--truncate-probability", cfg.truncate_probability,
+                   "a log frame cut short (first 1..size-1 bytes only) with probability P")
+        ->check(CLI::Range(0.0, 1.0));
     app.add_option("--unplug-at", unplug_at_s, "remove the port at S seconds after start ...");
     app.add_option("--unplug-for", unplug_for_s, "... and plug it back after S seconds");
     app.add_option("--duration", duration_s, "exit after S seconds (0 = until SIGTERM)");
@@ -127,6 +132,10 @@ int gps_main(int argc, char** argv)
             write_some(pty->master_fd(), baud_matches ? out : garble(out, rng));
         }
     }
+    std::fprintf(stderr, "%s: commands %llu, bit errors %llu bytes, truncated %llu frames\n", argv[0],
+                 static_cast<unsigned long long>(emulator.commands_received()),
+                 static_cast<unsigned long long>(emulator.bytes_damaged()),
+                 static_cast<unsigned long long>(emulator.frames_truncated()));
     return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "ugv/novatel/enums.hpp"
 #include "ugv/novatel/fix_quality.hpp"
 #include "ugv/novatel/gps_time.hpp"
+#include "ugv/sim/line_faults.hpp"
 
 namespace ugv::sim::gps {
 namespace nv = ugv::novatel;
@@ -147,6 +148,7 @@ std::string GpsEmulator::on_host_bytes(const uint8_t* data, std::size_t n)
             line_ += c;
         }
     }
+    bytes_damaged_ += flip_bits(out.begin(), out.end(), config_.bit_error_rate, rng_);
     return out;
 }
 
@@ -337,7 +339,13 @@ std::string GpsEmulator::tick(int64_t now_utime)
             break;
         }
         if (!silent) {
-            out += emit(due->message, due->next_utime);
+            std::string frame = emit(due->message, due->next_utime);
+            const std::size_t keep = truncated_length(frame.size(), config_.truncate_probability, rng_);
+            if (keep < frame.size()) {
+                frame.resize(keep);  // cut mid-frame; the next frame follows as usual
+                ++frames_truncated_;
+            }
+            out += frame;
         }
         due->next_utime += due->period_us;
         if (due->next_utime + 10 * due->period_us < now_utime) {
@@ -351,6 +359,7 @@ std::string GpsEmulator::tick(int64_t now_utime)
         }
         next_garbage_utime_ += static_cast<int64_t>(config_.garbage_period_s * 1e6);
     }
+    bytes_damaged_ += flip_bits(out.begin(), out.end(), config_.bit_error_rate, rng_);
     return out;
 }
 

@@ -151,8 +151,14 @@ void Gx1Emulator::advance(double t_s)
 {
     while (streaming_ && host_time_of_tick(next_tick_) <= t_s) {
         const double sample_s = host_time_of_tick(next_tick_);
-        const auto frame = build_data_reply(stream_command_, sample_s, static_cast<uint16_t>(next_tick_ & 0xFFFF));
-        if (!silent_) ++counters_.frames_streamed;
+        auto frame = build_data_reply(stream_command_, sample_s, static_cast<uint16_t>(next_tick_ & 0xFFFF));
+        if (!silent_) {
+            ++counters_.frames_streamed;
+            if (truncate_every_ > 0 && counters_.frames_streamed % truncate_every_ == 0 && frame.size() > 1) {
+                frame.resize(std::uniform_int_distribution<std::size_t>(1, frame.size() - 1)(rng_));
+                ++counters_.frames_truncated;
+            }
+        }
         send(frame);
         next_tick_ += period_ticks_;
     }

@@ -1,6 +1,7 @@
 // `ugv-sim imu --pty PATH`: the 3DM-GX1 emulator on a pseudo-terminal. This file is only the
 // I/O: the pty, the wall clock, pacing bytes at the line rate in randomly split writes, the
-// baud check, and the fault schedule. The device itself is Gx1Emulator.
+// baud check, and the fault schedule (including bit errors on the line). The device itself
+// is Gx1Emulator.
 #include <poll.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
+#include "ugv/sim/line_faults.hpp"
 #include "ugv/sim/command.hpp"
 #include "ugv/sim/imu/gx1_emulator.hpp"
 
@@ -41,6 +43,8 @@ struct Faults
     double silence_for_s = 2;
     double disappear_after_s = 0;  // 0 = never: close the pty (an unplug)
     double gone_for_s = 0;         // 0 = stay gone (exit)
+    double bit_error_rate = 0;     // per byte sent: one random bit flipped
+    unsigned truncate_every = 0;   // every n-th streamed frame cut short (0 = never)
 };
 
 std::vector<uint16_t> parse_words(const std::string& text)
@@ -88,6 +92,9 @@ int imu_main(int argc, char** argv)
     app.add_option("--silence-for", faults.silence_for_s, "silence length (s)")->capture_default_str();
     app.add_option("--disappear-after", faults.disappear_after_s, "close the pty (unplug) after S seconds (0 = never)");
     app.add_option("--gone-for", faults.gone_for_s, "re-create the pty after S seconds (0 = exit instead)");
+    app.add_option("--bit-error-rate", faults.bit_error_rate, "per byte sent, flip one random bit with this probability")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--truncate-every", faults.truncate_every, "cut every N-th streamed frame short (0 = never)");
     app.add_option("--duration", duration_s, "exit after S seconds (0 = run until SIGTERM)");
     try {
         app.parse(argc, argv);
@@ -119,6 +126,9 @@ int imu_main(int argc, char** argv)
     }
     const double start_s = now_s();
     auto emu = std::make_unique<Gx1Emulator>(cfg, start_s);
+    emu->set_truncate_every(faults.truncate_every);
+    std::mt19937 line_rng(cfg.noise.seed + 2);  // bit errors on the line
+    uint64_t bytes_damaged = 0;
     std::mt19937 split_rng(cfg.noise.seed + 1);
     std::uniform_int_distribution<int> garbage_byte(0, 255);
     const double byte_s = 10.0 / baud;
@@ -144,6 +154,7 @@ int imu_main(int argc, char** argv)
                 gone = false;
                 faults.disappear_after_s = 0;
                 emu = std::make_unique<Gx1Emulator>(cfg, t);  // plugged in = powered on again
+                emu->set_truncate_every(faults.truncate_every);
                 silenced = false;
                 std::fprintf(stderr, "%s: plugged in again\n", argv[0]);
             } else {
@@ -188,12 +199,17 @@ int imu_main(int argc, char** argv)
         std::vector<uint8_t> chunk(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(n));
         if (!baud_ok)
             for (auto& b : chunk) b = static_cast<uint8_t>(garbage_byte(split_rng));  // a rate mismatch
+        bytes_damaged += ugv::sim::flip_bits(chunk.begin(), chunk.end(), faults.bit_error_rate, line_rng);
         const ssize_t w = ::write(pty->master_fd(), chunk.data(), chunk.size());
         if (w > 0) {
             out.erase(out.begin(), out.begin() + w);
             tx_free_s += static_cast<double>(w) * byte_s;
         }
     }
+    std::fprintf(stderr, "%s: frames streamed %llu, truncated %llu; bytes with a bit flipped %llu\n", argv[0],
+                 static_cast<unsigned long long>(emu->counters().frames_streamed),
+                 static_cast<unsigned long long>(emu->counters().frames_truncated),
+                 static_cast<unsigned long long>(bytes_damaged));
     return 0;
 }
 

@@ -41,6 +41,10 @@ void add_fault(const std::string& spec, FaultPlan& plan)
         plan.device.garbage_probability = arg(1, 0.1, 0.0, 1.0);
     } else if (name == "bitflip") {
         plan.device.bitflip_probability = arg(1, 0.05, 0.0, 1.0);
+    } else if (name == "ber") {
+        plan.device.bit_error_rate = arg(1, 1e-3, 0.0, 1.0);
+    } else if (name == "truncate") {
+        plan.device.truncate_probability = arg(1, 0.1, 0.0, 1.0);
     } else if (name == "silence") {
         plan.device.silence_every_s = arg(1, 5.0, 0.1, 3600.0);
         plan.device.silence_for_s = arg(2, 1.0, 0.01, plan.device.silence_every_s);
@@ -50,7 +54,7 @@ void add_fault(const std::string& spec, FaultPlan& plan)
         plan.disappear_for_s = arg(2, 1.0, 0.0, 3600.0);
         max_args = 2;
     } else {
-        throw std::invalid_argument("--fault " + spec + ": unknown fault (garbage, bitflip, silence, disappear)");
+        throw std::invalid_argument("--fault " + spec + ": unknown fault (garbage, bitflip, ber, truncate, silence, disappear)");
     }
     if (p.size() > max_args + 1) throw std::invalid_argument("--fault " + spec + ": too many values");
 }

@@ -102,11 +102,12 @@ bool serve(const std::string& path, const DeviceOptions& options, const FaultPla
     }
     const DeviceStats& s = device.stats();
     std::fprintf(stderr,
-                 "ugv-sim lms: requests %llu, naks %llu, scans sent %llu, skipped %llu, garbled input %llu bytes, "
-                 "bytes written %llu, dropped %llu\n",
+                 "ugv-sim lms: requests %llu, naks %llu, scans sent %llu, skipped %llu, truncated %llu, garbled input "
+                 "%llu bytes, bit errors %llu bytes, bytes written %llu, dropped %llu\n",
                  static_cast<unsigned long long>(s.requests), static_cast<unsigned long long>(s.naks),
                  static_cast<unsigned long long>(s.scans_sent), static_cast<unsigned long long>(s.scans_skipped),
-                 static_cast<unsigned long long>(s.garbled_input), static_cast<unsigned long long>(counters.written),
+                 static_cast<unsigned long long>(s.scans_truncated), static_cast<unsigned long long>(s.garbled_input),
+                 static_cast<unsigned long long>(s.bytes_damaged), static_cast<unsigned long long>(counters.written),
                  static_cast<unsigned long long>(counters.dropped));
     return false;
 }
@@ -130,7 +131,8 @@ int lms_main(int argc, char** argv)
     app.add_option("--password", password, "installation-mode password");
     app.add_option("--seed", seed, "random seed of the faults");
     app.add_option("--fault", faults,
-                   "garbage[:P] | bitflip[:P] | silence[:EVERY[:FOR]] | disappear[:AFTER[:GONE]] (repeatable)");
+                   "garbage[:P] | bitflip[:P] | ber[:P] | truncate[:P] | silence[:EVERY[:FOR]] | disappear[:AFTER[:GONE]] "
+                   "(repeatable)");
     app.add_flag("-v,--verbose", verbose, "log the host's line rate changes");
     try {
         app.parse(argc, argv);

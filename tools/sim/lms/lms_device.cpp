@@ -7,6 +7,7 @@
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/requests.hpp"
 #include "ugv/sick_lms2xx/timing.hpp"
+#include "ugv/sim/line_faults.hpp"
 
 namespace ugv::sim::lms {
 
@@ -74,7 +75,10 @@ void LmsDevice::send(Bytes bytes, int host_baud, int64_t now_us, Bytes& out, boo
         std::uniform_int_distribution<int> len(1, 40), byte(0, 255);
         for (int i = len(rng_); i > 0; --i) out.push_back(static_cast<uint8_t>(byte(rng_)));
     }
+    const std::size_t first = out.size();
     out.insert(out.end(), bytes.begin(), bytes.end());
+    stats_.bytes_damaged +=
+        sim::flip_bits(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(), options_.faults.bit_error_rate, rng_);
 }
 
 void LmsDevice::reply(uint8_t command, const Bytes& data, int64_t now_us, int host_baud, Bytes& out)
@@ -272,6 +276,11 @@ void LmsDevice::tick(int64_t now_us, int host_baud, Bytes& out)
             std::uniform_int_distribution<std::size_t> pos(0, scan.size() - 1);
             std::uniform_int_distribution<int> bit(0, 7);
             scan[pos(rng_)] ^= static_cast<uint8_t>(1u << bit(rng_));
+        }
+        const std::size_t keep = sim::truncated_length(scan.size(), options_.faults.truncate_probability, rng_);
+        if (keep < scan.size()) {
+            scan.resize(keep);  // the line cut mid-telegram; the next scan follows as usual
+            ++stats_.scans_truncated;
         }
         if (!silent(now_us)) ++stats_.scans_sent;
         send(std::move(scan), host_baud, now_us, out, true);

@@ -28,6 +28,8 @@ struct Faults
     double bitflip_probability = 0.0;  // per scan sent: one bit flipped
     double silence_every_s = 0.0;      // > 0: every this many seconds ...
     double silence_for_s = 0.0;        // ... the device sends nothing for this long
+    double bit_error_rate = 0.0;       // per byte sent (replies, NAKs, scans): one bit flipped
+    double truncate_probability = 0.0; // per scan: only its first 1..size-1 bytes are sent
 };
 
 // The range in metres seen along a beam at angle_rad (0 = straight ahead, counter-clockwise
@@ -62,6 +64,8 @@ struct DeviceStats
     uint64_t scans_sent = 0;
     uint64_t scans_skipped = 0;   // due while the line was still busy
     uint64_t baud_switches = 0;
+    uint64_t bytes_damaged = 0;   // bytes with a bit flipped by the bit error rate
+    uint64_t scans_truncated = 0;
 };
 
 class LmsDevice

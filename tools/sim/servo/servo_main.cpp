@@ -3,13 +3,15 @@
 //   SIGUSR1 raises a fault (EMCY 0x8611 following error); SIGUSR2 drops the node off the bus
 //   for --loss-duration seconds (its heartbeat stops); SIGHUP puts the adapter's controller
 //   bus-off (BEL, then silence until the host closes and reopens). --fault-after/--loss-after schedule
-//   the same from the time the drive was first enabled.
+//   the same from the time the drive was first enabled. Line faults (serial_line_faults.hpp)
+//   corrupt what the adapter sends; --bus-bitrate and --refuse-tx-every are the adapter's.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -18,9 +20,11 @@
 #include <string>
 
 #include "drive_emulator.hpp"
+#include "serial_line_faults.hpp"
 #include "slcan_adapter.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
+#include "ugv/io/slcan_codec.hpp"
 #include "ugv/sim/command.hpp"
 
 namespace {
@@ -43,9 +47,16 @@ void usage(FILE* out)
     std::fprintf(out,
                  "usage: ugv-sim servo --pty PATH [--node-id N] [--initial-deg A] [--counts-per-rad C]\n"
                  "                     [--fault-after S] [--loss-after S] [--loss-duration S]\n"
+                 "                     [--bit-error-rate P] [--truncate-every N] [--garbage-every S]\n"
+                 "                     [--garbage-bytes N] [--seed N] [--bus-bitrate B] [--refuse-tx-every N]\n"
                  "  A CiA 402 servo drive behind an slcan adapter on a pseudo-terminal (symlink PATH).\n"
                  "  SIGUSR1: raise a fault (EMCY 0x8611). SIGUSR2: drop off the bus for --loss-duration s.\n"
-                 "  SIGHUP: the adapter's controller goes bus-off (BEL; silent until closed and reopened).\n");
+                 "  SIGHUP: the adapter's controller goes bus-off (BEL; silent until closed and reopened).\n"
+                 "  Faults on the adapter's output: --bit-error-rate P (per byte, one random bit flipped),\n"
+                 "  --truncate-every N (every N-th frame line cut short before its CR), --garbage-every S\n"
+                 "  (--garbage-bytes random bytes between lines every S seconds), --seed N. The adapter:\n"
+                 "  --bus-bitrate B (the bus runs at B bit/s: nothing passes unless the host set B),\n"
+                 "  --refuse-tx-every N (every N-th transmit answered BEL).\n");
 }
 
 // Writes what the host will take within ~10 ms; the rest is dropped (returned false), as a
@@ -74,6 +85,11 @@ int servo_main(int argc, char** argv)
     int node = 1;
     double initial_deg = 0.0, counts_per_rad = 4096.0 * 50.0 / (2.0 * M_PI);
     double fault_after = -1.0, loss_after = -1.0, loss_duration = 1.0;
+    double garbage_every_s = 0.0;
+    int bus_bitrate = 0;
+    unsigned refuse_tx_every = 0;
+    ugv::sim::servo::SerialLineFaultConfig line_faults;
+    line_faults.garbage_bytes = 16;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* {
@@ -90,6 +106,13 @@ int servo_main(int argc, char** argv)
         else if (a == "--fault-after") fault_after = std::atof(value());
         else if (a == "--loss-after") loss_after = std::atof(value());
         else if (a == "--loss-duration") loss_duration = std::atof(value());
+        else if (a == "--bit-error-rate") line_faults.bit_error_rate = std::atof(value());
+        else if (a == "--truncate-every") line_faults.truncate_every = static_cast<unsigned>(std::atoi(value()));
+        else if (a == "--garbage-every") garbage_every_s = std::atof(value());
+        else if (a == "--garbage-bytes") line_faults.garbage_bytes = static_cast<std::size_t>(std::atoi(value()));
+        else if (a == "--seed") line_faults.seed = static_cast<unsigned>(std::atoi(value()));
+        else if (a == "--bus-bitrate") bus_bitrate = std::atoi(value());
+        else if (a == "--refuse-tx-every") refuse_tx_every = static_cast<unsigned>(std::atoi(value()));
         else if (a == "--help" || a == "-h") {
             usage(stdout);
             return 0;
@@ -99,7 +122,9 @@ int servo_main(int argc, char** argv)
             return 2;
         }
     }
-    if (pty_path.empty() || node < 1 || node > 127) {
+    const auto bus_bitrate_command = ugv::io::slcan::encode_bitrate(bus_bitrate);
+    if (pty_path.empty() || node < 1 || node > 127 || line_faults.bit_error_rate < 0 ||
+        line_faults.bit_error_rate > 1 || (bus_bitrate != 0 && !bus_bitrate_command)) {
         usage(stderr);
         return 2;
     }
@@ -116,11 +141,15 @@ int servo_main(int argc, char** argv)
     model.initial_position_counts = initial_deg * M_PI / 180.0 * counts_per_rad;
     ugv::sim::servo::DriveEmulator drive(model);
     ugv::sim::servo::SlcanAdapter adapter;
+    if (bus_bitrate_command) adapter.set_bus_bitrate_code((*bus_bitrate_command)[1] - '0');
+    adapter.set_refuse_tx_every(refuse_tx_every);
+    ugv::sim::servo::SerialLineFaults serial_line(line_faults);
     std::fprintf(stderr, "ugv-sim servo: node %d on %s (slave %s)\n", node, pty.path().c_str(), pty.slave_path().c_str());
 
     const int64_t t0 = ugv::io::monotonic_us();
     drive.power_on(t0);
     int64_t enabled_at = -1;
+    int64_t next_garbage_us = garbage_every_s > 0 ? t0 + static_cast<int64_t>(garbage_every_s * 1e6) : INT64_MAX;
     bool fault_done = false, loss_done = false;
     int faults_seen = 0, losses_seen = 0, bus_offs_seen = 0;
     uint64_t dropped_writes = 0;
@@ -156,12 +185,20 @@ int servo_main(int argc, char** argv)
             adapter.bus_off();
         }
         for (const auto& f : drive.take_outgoing()) adapter.on_bus_frame(f, now);
-        const std::string out = adapter.take_output();
+        const bool garbage_now = now >= next_garbage_us;
+        if (garbage_now) next_garbage_us += static_cast<int64_t>(garbage_every_s * 1e6);
+        const std::string out = serial_line.apply(adapter.take_output(), garbage_now);
         if (!out.empty() && !write_some(pty.master_fd(), out) && ++dropped_writes % 1000 == 1) {
             std::fprintf(stderr, "ugv-sim servo: the host is not reading; output dropped (%llu times)\n",
                          static_cast<unsigned long long>(dropped_writes));
         }
     }
+    std::fprintf(stderr,
+                 "ugv-sim servo: bytes with a bit flipped %llu, lines truncated %llu, garbage bytes %llu, transmits refused %llu\n",
+                 static_cast<unsigned long long>(serial_line.bytes_damaged()),
+                 static_cast<unsigned long long>(serial_line.lines_truncated()),
+                 static_cast<unsigned long long>(serial_line.garbage_sent()),
+                 static_cast<unsigned long long>(adapter.tx_refused()));
     return 0;
 }
 

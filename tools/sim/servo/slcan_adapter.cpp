@@ -77,7 +77,11 @@ void SlcanAdapter::command(const std::string& line, int64_t now_us, std::vector<
     case 'R': {
         const auto e = io::slcan::decode_line(line);
         if (!open_ || listen_only_ || bus_off_ || e.kind != io::slcan::Event::Kind::frame) return bell();
-        frames.push_back(e.frame);
+        if (refuse_tx_every_ > 0 && ++transmits_ % refuse_tx_every_ == 0) {
+            ++tx_refused_;
+            return bell();
+        }
+        if (bitrate_matches()) frames.push_back(e.frame);
         output_ += (line[0] == 't' || line[0] == 'r') ? "z\r" : "Z\r";
         return;
     }
@@ -94,7 +98,7 @@ void SlcanAdapter::bus_off()
 
 void SlcanAdapter::on_bus_frame(const io::CanFrame& frame, int64_t now_us)
 {
-    if (!open_ || bus_off_) return;
+    if (!open_ || bus_off_ || !bitrate_matches()) return;
     std::string s = io::slcan::encode_frame(frame);
     if (timestamps_ && !s.empty() && s.back() == '\r') s.insert(s.size() - 1, stamp(now_us));
     output_ += s;

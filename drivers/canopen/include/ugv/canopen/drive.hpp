@@ -43,6 +43,15 @@ struct DriveConfig
     cia402::Enabler::Options enabler;
     int64_t setpoint_timeout_us = 200'000;
     int64_t halt_timeout_us = 500'000;
+    // Set when the link to the drive has no checksum (slcan's ASCII lines; CAN itself has a
+    // CRC): a bit error there can turn a TPDO into another well-formed one. Then a TPDO1 whose
+    // CiA 402 state differs from the last accepted one, or whose position is further from it
+    // than the axis can move (2 x max_velocity_rad_s over the time since, at least one TPDO
+    // period, plus 0.5 deg), is taken only once the next TPDO1 agrees with it; one that is
+    // never confirmed is dropped and counted (tpdo_implausible). A TPDO2 velocity beyond
+    // twice the cap is dropped and counted too. Costs one TPDO period of delay on a real
+    // state change.
+    bool check_tpdo_plausibility = false;
 };
 
 struct DriveSample
@@ -75,6 +84,7 @@ struct DriveCounters
     uint64_t setpoints_acknowledged = 0;
     uint64_t setpoint_timeouts = 0;
     uint64_t tpdo_received = 0;
+    uint64_t tpdo_implausible = 0;  // TPDOs dropped by check_tpdo_plausibility
 };
 
 class Drive
@@ -103,6 +113,9 @@ public:
     Phase phase() const { return phase_; }
     bool operational() const { return phase_ == Phase::operational; }
     const std::string& failure() const { return failure_; }
+    // Whether any frame at all arrived since start(): a session that failed without one
+    // points at power, wiring or the bitrate rather than at the drive's answers.
+    bool heard_since_start() const { return frames_since_start_ > 0; }
     DriveCounters counters() const;
     std::optional<DriveSample> last_sample() const { return last_; }
     uint16_t last_emcy_code() const { return last_emcy_code_; }
@@ -120,6 +133,16 @@ private:
     void event(DriveEvent::Level level, std::string text);
     void queue_configuration();
     void on_tpdo1(uint16_t statusword, int32_t counts, int64_t now_us, int64_t utime);
+    // What a TPDO1 said, for the plausibility check.
+    struct Tpdo1Reading
+    {
+        cia402::State state = cia402::State::unknown;
+        int32_t counts = 0;
+        int64_t utime = 0;
+    };
+    bool plausible_tpdo1(const Tpdo1Reading& reading);
+    bool readings_agree(const Tpdo1Reading& earlier, const Tpdo1Reading& later) const;
+    double max_step_rad(double dt_s) const;
     void send_rpdos(bool force);
 
     DriveConfig config_;
@@ -133,12 +156,15 @@ private:
     PdoMapping tpdo1_, tpdo2_, rpdo1_, rpdo2_;
 
     int64_t phase_us_ = 0;
+    uint64_t frames_since_start_ = 0;
     int64_t next_sync_us_ = 0;
     bool config_done_ = false;
     bool halt_ = false;
     cia402::State last_state_ = cia402::State::unknown;
     double velocity_rad_s_ = 0.0;
     std::optional<DriveSample> last_;
+    std::optional<Tpdo1Reading> last_tpdo1_reading_;  // accepted or not
+    bool holding_tpdo1_ = false;  // the last reading waits for the next one to confirm it
     uint16_t last_emcy_code_ = 0;
 
     // What the drive was last sent through the RPDOs (send only changes, and on retries).

@@ -4,7 +4,10 @@
 // LOG <message> ONTIME <period> per requested log, each answered "<OK" (an "<ERROR:..." or
 // no reply within reply_timeout_ms fails the start). If UNLOGALL gets no reply at the open
 // baud but a COM baud is configured, the receiver may still be at that baud from an earlier
-// run: the session tries there once before failing.
+// run: the session tries there once before failing. Still no reply and probe_bauds given: it
+// tries UNLOGALL at each of those rates (a receiver left at another rate by someone else), and
+// once one answers, switches the receiver back to the configured rate with COM (the port
+// then runs at com_baud, else at the open rate). found_at_baud() tells where it was.
 // passive mode: sends nothing; a receiver configured by someone else is just read.
 //
 // Silence: no valid frame for silence_timeout_us -> poll() reports `silent`; the caller
@@ -34,6 +37,7 @@ struct SessionConfig
     int com_baud = 0;                // > 0: switch the receiver's port (and the host) to it
     int reply_timeout_ms = 1000;
     int64_t silence_timeout_us = 2'000'000;
+    std::vector<int> probe_bauds;    // configure mode: rates to look for a silent receiver at
 };
 
 struct SessionCounters
@@ -41,6 +45,7 @@ struct SessionCounters
     uint64_t commands_sent = 0;
     uint64_t commands_failed = 0;    // <ERROR or no reply
     uint64_t starts = 0;
+    uint64_t found_by_probing = 0;   // starts that found the receiver at a probed rate
 };
 
 class Session
@@ -62,6 +67,8 @@ public:
     void set_raw_tap(RawTap tap) { raw_tap_ = std::move(tap); }
 
     const std::string& error() const { return error_; }
+    // The rate the receiver answered at in the last start (0 before one answered).
+    int found_at_baud() const { return found_at_baud_; }
     const SessionCounters& counters() const { return counters_; }
     const SessionConfig& config() const { return config_; }
 
@@ -71,6 +78,10 @@ private:
     // Feeds one read into the decoder; tracks frame activity. False when the stream closed.
     bool read_once(int timeout_ms, const Decoder::Sink& sink, io::ReadResult& result);
     bool fail(const std::string& why);
+    // UNLOGALL at the open rate (twice), then the COM rate, then each probe rate, until one
+    // answers. tried: the rates other than the open one, for the error.
+    Reply find_receiver(const Decoder::Sink& sink, std::string& tried);
+    Reply unlogall_at(int baud, const Decoder::Sink& sink);
 
     io::ByteStream& stream_;
     Decoder& decoder_;
@@ -85,6 +96,7 @@ private:
     bool awaiting_ = false;
     std::string last_reply_;
     RawTap raw_tap_;
+    int found_at_baud_ = 0;
 };
 
 }  // namespace ugv::novatel

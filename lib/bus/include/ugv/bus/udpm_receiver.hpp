@@ -32,6 +32,9 @@ public:
     UdpmReceiver& operator=(const UdpmReceiver&) = delete;
 
     int fd() const { return fd_; }
+    // What the kernel granted of SO_RCVBUF (the request, unless net.core.rmem_max is lower).
+    int receive_buffer_bytes() const { return receive_buffer_bytes_; }
+    static constexpr int kDefaultReceiveBufferBytes = 2 << 20;
 
     // channel, payload, size, the kernel's receive time of the (last) datagram, us since the epoch.
     using Sink = std::function<void(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)>;
@@ -45,6 +48,7 @@ public:
 
 private:
     int fd_ = -1;
+    int receive_buffer_bytes_ = 0;
     std::vector<uint8_t> buffers_;  // kBatch datagrams of up to 64 KiB
     std::vector<uint8_t> control_;  // their SO_TIMESTAMP control messages
     LcmReassembler reassembler_;

@@ -5,7 +5,8 @@
 // prompt) and unknown commands or messages with "<ERROR:...", and emits the logged
 // messages on time-of-week multiples of their period from a trajectory (stationary, or a
 // straight line at constant speed), with position noise, a scripted sequence of position
-// types (e.g. SINGLE -> PSRDIFF -> NARROW_INT) and faults (garbage bursts, silence).
+// types (e.g. SINGLE -> PSRDIFF -> NARROW_INT) and faults (garbage bursts, silence, bit
+// errors per byte, truncated frames).
 #pragma once
 
 #include <cstdint>
@@ -57,6 +58,8 @@ struct EmulatorConfig
     double garbage_period_s = 0;      // > 0: a burst of random bytes this often
     double silence_at_s = -1;         // >= 0: stop output for silence_for_s from then
     double silence_for_s = 0;
+    double bit_error_rate = 0;        // per byte sent (logs and replies): one bit flipped
+    double truncate_probability = 0;  // per log frame: only its first 1..size-1 bytes are sent
 };
 
 class GpsEmulator
@@ -75,6 +78,8 @@ public:
     // Truth of the trajectory (no noise) at a time.
     void truth(int64_t utime, double& latitude_deg, double& longitude_deg) const;
     uint64_t commands_received() const { return commands_; }
+    uint64_t bytes_damaged() const { return bytes_damaged_; }
+    uint64_t frames_truncated() const { return frames_truncated_; }
 
 private:
     struct ActiveLog
@@ -99,6 +104,8 @@ private:
     std::mt19937 rng_;
     int64_t next_garbage_utime_ = 0;
     uint64_t commands_ = 0;
+    uint64_t bytes_damaged_ = 0;
+    uint64_t frames_truncated_ = 0;
 };
 
 // "SINGLE@0,PSRDIFF@5,NARROW_INT@10" -> steps; throws std::invalid_argument on a bad item.

@@ -5,7 +5,7 @@
 // It answers every command of the fact sheet (data replies from the attitude callback plus
 // noise, EEPROM reads and writes, gains, identity, tare, gyro bias, temperature), streams in
 // continuous mode on its own timer (ticks from the EEPROM timing words, a clock error in
-// ppm), and can be told to misbehave (garbage bytes, silence).
+// ppm), and can be told to misbehave (garbage bytes, silence, streamed frames cut short).
 #pragma once
 
 #include <array>
@@ -69,6 +69,7 @@ struct EmulatorCounters
     uint64_t commands = 0;       // complete commands understood
     uint64_t ignored_bytes = 0;  // bytes that start no command
     uint64_t frames_streamed = 0;
+    uint64_t frames_truncated = 0;  // streamed frames cut short (set_truncate_every)
 };
 
 class Gx1Emulator
@@ -88,6 +89,9 @@ public:
     // Fault injection.
     void inject_garbage(std::size_t n);  // random bytes, rich in command bytes
     void set_silent(bool silent) { silent_ = silent; }  // produce nothing (a hung unit)
+    // Every n-th streamed frame goes out cut short: only its first k bytes (k random in
+    // 1 .. length-1), then the next frame follows as usual. 0 = never.
+    void set_truncate_every(unsigned n) { truncate_every_ = n; }
 
     bool streaming() const { return streaming_; }
     uint8_t streamed_command() const { return stream_command_; }
@@ -115,6 +119,7 @@ private:
     std::deque<uint8_t> out_;
     bool streaming_ = false;
     bool silent_ = false;
+    unsigned truncate_every_ = 0;
     uint8_t stream_command_ = 0;
     int64_t next_tick_ = 0;
     int64_t period_ticks_ = 1;
