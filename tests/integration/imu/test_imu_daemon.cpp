@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -174,6 +175,7 @@ struct ImuRun
         if (sim) {
             sim->signal(SIGKILL);
             sim->wait_exit(5.0);
+            std::filesystem::remove(pty);  // as udev does: a dangling link may point at a reused /dev/pts
         }
         const std::string name = "sim" + std::to_string(++units);
         sim = std::make_unique<Process>(emulator_args(pty, faults), dir / (name + ".out"), dir / (name + ".err"));
@@ -250,6 +252,7 @@ TEST_CASE("ugv-imu publishes the emulator's attitude at its rate and survives an
     const auto unplugged = std::chrono::steady_clock::now();
     sim->wait_exit(5.0);
     sim.reset();
+    std::filesystem::remove(pty);  // as udev does: a dangling link may point at a reused /dev/pts
     REQUIRE(listen.until([&] { return listen.got().status.state == ugv::daemon_status_t::STATE_DEGRADED; }, 10.0));
     CHECK(daemon.running());
     listen.until([] { return false; }, std::max(0.0, 5.0 - seconds_since(unplugged)));

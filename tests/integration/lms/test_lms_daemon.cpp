@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ TEST_CASE("ugv-lms: handshake 9600 -> 500000, 37.5 Hz scans, restart of the devi
     // Unplug: the emulator dies. The daemon reports DEGRADED and keeps trying.
     sim->signal(SIGKILL);
     CHECK(sim->wait_exit(5.0) == 128 + SIGKILL);
+    // A killed emulator leaves its link dangling; the kernel may give its /dev/pts number to
+    // another process (another test's emulator), which the daemon would then open and probe.
+    // udev removes the link of an unplugged adapter: so does the test.
+    std::filesystem::remove(pty);
     CHECK(l.until([&] { return l.status.state == ugv::daemon_status_t::STATE_DEGRADED; }, 10.0));
     CHECK(daemon.running());
     // Plug in again: a fresh device at 9600. Same daemon process, streaming again.
