@@ -37,13 +37,17 @@ TEST_CASE("ugv-lms: handshake 9600 -> 500000, 37.5 Hz scans, restart of the devi
     CHECK(sim->err().find("device now at 500000 baud") != std::string::npos);
     CHECK(sim->err().find("streaming on (180 deg / 0.50 deg, mm)") != std::string::npos);
 
-    // The rate over 3 s of wall time.
+    // The rate over 3 s of wall time: 37.5 Hz is the 500 kbaud mode (at 38400 baud it would be
+    // under 5 Hz, a half-rate mode 18.75 Hz). The lower bound leaves room for a loaded CI
+    // machine starving the emulator (33.8 Hz seen once under ctest -j2); nothing between the
+    // daemon and this listener may be lost: the seq runs without a gap.
     const std::size_t n0 = l.scans.size();
     const int64_t t0 = ugv::io::monotonic_us();
     l.for_seconds(3.0);
     const double rate = static_cast<double>(l.scans.size() - n0) / (static_cast<double>(ugv::io::monotonic_us() - t0) * 1e-6);
-    CHECK(rate >= 35.0);
+    CHECK(rate >= 30.0);
     CHECK(rate <= 40.0);
+    for (std::size_t k = n0 + 1; k < l.scans.size(); ++k) CHECK(l.scans[k].seq == l.scans[k - 1].seq + 1);
 
     const ugv::laser_scan_t& s = l.scans.back();
     REQUIRE(s.nranges == 361);
