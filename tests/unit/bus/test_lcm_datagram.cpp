@@ -90,7 +90,9 @@ TEST_CASE("lcm datagram: what is not a well-formed LCM datagram is invalid")
 
 TEST_CASE("lcm datagram: fragment headers, and fragments outside their message are invalid")
 {
-    const LcmDatagram first = parse(fragment(9, 10, 0, 0, 2, "MAP", "01234"));
+    // The datagram's bytes must outlive it: channel and payload point into them.
+    const auto first_bytes = fragment(9, 10, 0, 0, 2, "MAP", "01234");
+    const LcmDatagram first = parse(first_bytes);
     REQUIRE(first.kind == LcmDatagram::Kind::fragment);
     CHECK(first.sequence == 9u);
     CHECK(first.message_size == 10u);
@@ -98,7 +100,8 @@ TEST_CASE("lcm datagram: fragment headers, and fragments outside their message a
     CHECK(first.fragment_count == 2);
     CHECK(first.channel == "MAP");
     CHECK(first.payload_size == 5);
-    const LcmDatagram second = parse(fragment(9, 10, 5, 1, 2, "", "56789"));
+    const auto second_bytes = fragment(9, 10, 5, 1, 2, "", "56789");
+    const LcmDatagram second = parse(second_bytes);
     REQUIRE(second.kind == LcmDatagram::Kind::fragment);
     CHECK(second.channel.empty());
     CHECK(second.offset == 5u);
