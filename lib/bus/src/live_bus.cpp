@@ -90,9 +90,8 @@ public:
         const int64_t deadline = io::monotonic_us() + int64_t{timeout_ms} * 1000;
         for (;;) {
             const std::size_t handed = receiver_->drain(
-                [this](std::string_view channel) { return !route(channel).empty(); },
                 [this](std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime) {
-                    dispatch(channel, data, size, recv_utime);
+                    return dispatch(channel, data, size, recv_utime);
                 });
             counters_.incomplete_messages = receiver_->reassembly().incomplete_messages;
             counters_.invalid_datagrams = receiver_->reassembly().invalid_datagrams;
@@ -135,12 +134,15 @@ private:
         return routes_.emplace(channel_, std::move(to)).first->second;
     }
 
-    void dispatch(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)
+    // Calls the channel's handlers; false when nobody subscribed to it (most datagrams).
+    bool dispatch(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)
     {
-        const std::vector<Sub*> to = route(channel);  // a copy: a handler may subscribe
+        if (route(channel).empty()) return false;
+        const std::vector<Sub*> to = route(channel_);  // a copy: a handler may subscribe
         const std::string name = channel_;
         ++counters_.received;
         for (Sub* s : to) detail::call_guarded(s->handler, counters_, name, data, size, recv_utime);
+        return true;
     }
 
     HandleResult wait_without_subscriptions(int timeout_ms)

@@ -83,7 +83,7 @@ UdpmReceiver::~UdpmReceiver()
     if (fd_ >= 0) ::close(fd_);
 }
 
-std::size_t UdpmReceiver::drain(const Wants& wants, const Sink& sink)
+std::size_t UdpmReceiver::drain(const Sink& sink)
 {
     std::size_t handed = 0;
     mmsghdr msgs[kBatch];
@@ -110,19 +110,13 @@ std::size_t UdpmReceiver::drain(const Wants& wants, const Sink& sink)
             const int64_t recv_utime = receive_time_us(msgs[k].msg_hdr);
             if (d.kind == LcmDatagram::Kind::short_message) {
                 ++counters_.messages;
-                if (wants(d.channel)) {
-                    sink(d.channel, d.payload, d.payload_size, recv_utime);
-                    ++handed;
-                }
+                handed += sink(d.channel, d.payload, d.payload_size, recv_utime) ? 1 : 0;
                 continue;
             }
             const uint64_t sender = (uint64_t{from[k].sin_addr.s_addr} << 16) | from[k].sin_port;
             if (!reassembler_.add_fragment(sender, d, whole)) continue;
             ++counters_.messages;
-            if (wants(whole.channel)) {
-                sink(whole.channel, whole.payload.data(), whole.payload.size(), recv_utime);
-                ++handed;
-            }
+            handed += sink(whole.channel, whole.payload.data(), whole.payload.size(), recv_utime) ? 1 : 0;
         }
         if (static_cast<std::size_t>(n) < kBatch) break;
     }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,15 +33,17 @@ struct Received
 };
 
 // Drains until `count` messages were handed out or 5 s passed.
-std::vector<Received> receive(UdpmReceiver& r, std::size_t count, const UdpmReceiver::Wants& wants)
+std::vector<Received> receive(UdpmReceiver& r, std::size_t count, const std::function<bool(std::string_view)>& wants)
 {
     std::vector<Received> got;
     const int64_t until = ugv::io::monotonic_us() + 5'000'000;
     while (got.size() < count && ugv::io::monotonic_us() < until) {
         pollfd p{r.fd(), POLLIN, 0};
         ::poll(&p, 1, 50);
-        r.drain(wants, [&](std::string_view ch, const uint8_t* d, std::size_t n, int64_t t) {
+        r.drain([&](std::string_view ch, const uint8_t* d, std::size_t n, int64_t t) {
+            if (!wants(ch)) return false;
             got.push_back({std::string(ch), std::vector<uint8_t>(d, d + n), t});
+            return true;
         });
     }
     return got;

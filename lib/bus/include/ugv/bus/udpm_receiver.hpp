@@ -36,12 +36,12 @@ public:
     int receive_buffer_bytes() const { return receive_buffer_bytes_; }
     static constexpr int kDefaultReceiveBufferBytes = 2 << 20;
 
-    // channel, payload, size, the kernel's receive time of the (last) datagram, us since the epoch.
-    using Sink = std::function<void(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)>;
-    using Wants = std::function<bool(std::string_view channel)>;
+    // channel, payload, size, the kernel's receive time of the (last) datagram, us since the
+    // epoch; returns whether the message was wanted (someone subscribed to its channel).
+    using Sink = std::function<bool(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)>;
     // Reads every datagram already waiting, without blocking, and hands each complete message
-    // whose channel `wants` accepts to `sink`, in arrival order. Returns how many it handed.
-    std::size_t drain(const Wants& wants, const Sink& sink);
+    // to `sink`, in arrival order. Returns how many the sink wanted.
+    std::size_t drain(const Sink& sink);
 
     const UdpmReceiverCounters& counters() const { return counters_; }
     const ReassemblyCounters& reassembly() const { return reassembler_.counters(); }
