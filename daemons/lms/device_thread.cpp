@@ -124,6 +124,7 @@ void DeviceThread::publish_counters()
     c["reconnects"] = s.reconnects.load();
     c["bytes_in"] = s.bytes_in.load();
     c["bad_scans"] = s.bad_scans.load();
+    c["clock_restarts"] = s.clock_restarts.load();
 }
 
 }  // namespace ugv::lms_daemon

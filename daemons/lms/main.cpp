@@ -17,7 +17,7 @@ int main(int argc, char** argv)
 
     // Every counter exists from the first status message on.
     for (const char* name : {"scans", "crc_errors", "resyncs", "naks", "timeouts", "reconnects", "bytes_in",
-                             "bad_scans", "published", "publish_failures"})
+                             "bad_scans", "clock_restarts", "published", "publish_failures"})
         d.counters()[name];
     DeviceThread device(d, config);
     int ticks = 0;

@@ -46,7 +46,7 @@ ServoApp::ServoApp(daemon::Daemon& d, ServoConfig config)
     for (const char* n : {"sdo_timeouts", "sdo_aborts", "emcy", "heartbeat_losses", "faults", "fault_resets",
                           "enable_failures", "bus_errors", "reconnects", "reinits", "tx_failures",
                           "setpoint_timeouts", "commands_accepted", "commands_refused", "samples", "rx_errors",
-                          "tpdo_implausible"})
+                          "tpdo_implausible", "clock_restarts"})
         d_.counters()[n] = 0;
 }
 
@@ -117,6 +117,7 @@ void ServoApp::drain_transport()
         if (r.status == io::CanReceive::Status::error && ++rx_errors_in_a_row_ < kRxErrorsBeforeReopen) {
             // A malformed slcan line (line noise, a byte lost) or one failed read: dropped.
             ++rx_errors_;
+            drive_.note_lost_frame();
             log_.log(spdlog::level::warn, "rx", "receive error: " + r.detail, io::monotonic_us());
             continue;
         }
@@ -265,6 +266,7 @@ void ServoApp::sync_counters()
     k["samples"] = static_cast<int64_t>(samples_);
     k["rx_errors"] = static_cast<int64_t>(rx_errors_);
     k["tpdo_implausible"] = static_cast<int64_t>(c.tpdo_implausible);
+    k["clock_restarts"] = static_cast<int64_t>(c.clock_restarts);
 }
 
 void ServoApp::shutdown()

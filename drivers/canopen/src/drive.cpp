@@ -113,6 +113,9 @@ void Drive::start(int64_t now_us)
     last_state_ = cia402::State::unknown;
     last_tpdo1_reading_.reset();
     holding_tpdo1_ = false;
+    // Without SYNC, TPDO1 comes every event-timer period of the drive's clock.
+    tpdo1_clock_ = io::PeriodicClock(config_.tpdo_period_ms * 1e-3, 1, tpdo1_clock_.restarts());
+    lost_frames_ = 0;
     frames_since_start_ = 0;
     counters_.fault_resets += enabler_.fault_resets();  // the fresh enabler counts from 0
     enabler_ = cia402::Enabler(config_.enabler);
@@ -312,6 +315,11 @@ void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime)
         return;
     }
     if (auto v = unpack_pdo(tpdo1_, node_, frame)) {
+        // With SYNC the host's own SYNC times the sample: the receive time is kept.
+        if (config_.sync_period_us == 0) {
+            utime = tpdo1_clock_.update(utime, std::exchange(lost_frames_, 0));
+            counters_.clock_restarts = tpdo1_clock_.restarts();
+        }
         const auto statusword = static_cast<uint16_t>((*v)[0]);
         const auto counts = static_cast<int32_t>((*v)[1]);
         if (config_.check_tpdo_plausibility &&

@@ -140,11 +140,22 @@ void Session::handle_scan(const Telegram& t)
     if (decode_scan(t, scan_.scan) != ScanError::none ||
         scan_.scan.ranges_m.size() != static_cast<std::size_t>(expected_beams_)) {
         ++stats_.bad_scans;
+        ++scans_rejected_since_last_;
         return;
     }
     const double period = scan_period_s(config_.resolution_cdeg);
-    const ScanStamp stamp = stamp_scan(chunk_utime_, t.raw.size(), device_baud_, period, expected_beams_);
-    scan_.arrival_utime = chunk_utime_;
+    // The bytes read after this telegram in the same chunk came after its last byte.
+    const int64_t last_byte_utime =
+        chunk_utime_ - std::llround(line_time_s(decoder_.buffered(), device_baud_) * 1e6);
+    const DecoderStats& ds = decoder_.stats();
+    const uint64_t rejected = ds.crc_errors + ds.length_errors;
+    scans_rejected_since_last_ += static_cast<int>(std::min<uint64_t>(rejected - rejected_frames_at_last_scan_, 1000));
+    rejected_frames_at_last_scan_ = rejected;
+    const int64_t arrival = scan_clock_.update(last_byte_utime, scans_rejected_since_last_);
+    scans_rejected_since_last_ = 0;
+    stats_.clock_restarts = static_cast<int64_t>(scan_clock_.restarts());
+    const ScanStamp stamp = stamp_scan(arrival, t.raw.size(), device_baud_, period, expected_beams_);
+    scan_.arrival_utime = last_byte_utime;
     scan_.first_beam_utime = stamp.first_beam_utime;
     scan_.time_increment_s = stamp.time_increment_s;
     scan_.scan_period_s = period;
@@ -294,6 +305,14 @@ bool Session::initialise()
     if (device_baud_ != config_.baud && !switch_baud(config_.baud)) return false;
     if (!configure()) return false;
     if (!mode_switch(request_start_streaming(), "start streaming")) return false;
+    // A new stream: the count and the fit start again (the restarts so far stay counted).
+    // A line too slow for every scan carries every n-th (the next one due once it is free).
+    const double period_s = scan_period_s(config_.resolution_cdeg);
+    const double telegram_s = line_time_s(2 * static_cast<std::size_t>(expected_beams_) + 10, device_baud_);
+    const int scans_per_telegram = std::max(1, static_cast<int>(std::ceil(telegram_s / period_s - 1e-9)));
+    scan_clock_ = io::PeriodicClock(period_s, scans_per_telegram, scan_clock_.restarts());
+    rejected_frames_at_last_scan_ = decoder_.stats().crc_errors + decoder_.stats().length_errors;
+    scans_rejected_since_last_ = 0;
     streaming_ = true;
     last_scan_us_ = now_us();
     error_.clear();

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "ugv/microstrain_gx1/clock_filter.hpp"
+#include "ugv/io/device_clock_filter.hpp"
 #include "ugv/microstrain_gx1/frame_parser.hpp"
 #include "ugv/microstrain_gx1/orientation.hpp"
 #include "ugv/microstrain_gx1/tick_unwrapper.hpp"
@@ -27,7 +27,7 @@ private:
     microstrain_gx1::GainScales gains_;
     microstrain_gx1::FrameConverter converter_;
     microstrain_gx1::TickUnwrapper ticks_;
-    microstrain_gx1::DeviceClockFilter clock_;
+    io::DeviceClockFilter clock_;
     int64_t last_ticks_ = INT64_MIN;
 };
 

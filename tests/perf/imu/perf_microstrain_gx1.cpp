@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "ugv/microstrain_gx1/clock_filter.hpp"
+#include "ugv/io/device_clock_filter.hpp"
 #include "ugv/microstrain_gx1/frame_parser.hpp"
 #include "ugv/microstrain_gx1/orientation.hpp"
 #include "ugv/microstrain_gx1/scaling.hpp"
@@ -64,7 +64,7 @@ void BM_decode_convert_stamp_0x31(benchmark::State& state)
     p.next(f);
     const GainScales g;
     const FrameConverter conv(rotation_from_euler(0.01, 0.02, 0.03), 0.1);
-    DeviceClockFilter clock;
+    ugv::io::DeviceClockFilter clock;
     double t = 0;
     for (auto _ : state) {
         const DeviceSample s = decode_sample(f, g);

@@ -233,9 +233,9 @@ Bytes LmsDevice::make_scan(int64_t now_us)
         const std::size_t telegram_bytes = lms::encode_scan_telegram(std::vector<uint16_t>(beam_ranges_.size(), 0),
                                                                      units(), 0, indexed ? 0 : -1, kReplyStatus)
                                                .size();
-        // A pty has no line rate: the whole telegram reaches the host now, which the host's
-        // model reads as its last byte arriving now, so the scan ended one transmission time
-        // (at the device's rate) before now.
+        // A pty has no line rate: the whole telegram reaches the host when it is sent
+        // (now_us, the scan's due time), which the host's model reads as its last byte
+        // arriving then, so the scan ended one transmission time (at the device's rate) before.
         const double duration_us = lms::scan_period_s(resolution_cdeg_) * 1e6;
         const double tx_us = static_cast<double>(telegram_bytes) * 10.0 * 1e6 / baud_;
         const double first_us = static_cast<double>(now_us) - tx_us - duration_us;
@@ -265,12 +265,25 @@ void LmsDevice::tick(int64_t now_us, int host_baud, Bytes& out)
     if (epoch_us_ < 0) epoch_us_ = now_us;
     if (!streaming_) return;
     if (next_scan_us_ == 0) next_scan_us_ = now_us;
-    if (now_us < next_scan_us_) return;
     const auto period_us = static_cast<int64_t>(lms::scan_period_s(resolution_cdeg_) * 1e6);
-    if (line_free_us_ > now_us) {
+    // The mirror does not wait for the process that emulates it: a tick that comes late sends
+    // every scan that fell due meanwhile, each measured and sent at its own time (the host
+    // reads them together, as it would after a stall of its own). More than a second behind
+    // (the process was stopped), the older scans are dropped, keeping the phase.
+    if (now_us - next_scan_us_ > 1'000'000) {
+        const int64_t missed = (now_us - next_scan_us_) / period_us;
+        stats_.scans_skipped += static_cast<uint64_t>(missed);
+        next_scan_us_ += missed * period_us;
+    }
+    for (; next_scan_us_ <= now_us; next_scan_us_ += period_us) send_scan(next_scan_us_, host_baud, out);
+}
+
+void LmsDevice::send_scan(int64_t due_us, int host_baud, Bytes& out)
+{
+    if (line_free_us_ > due_us) {
         ++stats_.scans_skipped;  // the previous scan is still on the wire
     } else {
-        Bytes scan = make_scan(now_us);
+        Bytes scan = make_scan(due_us);
         std::uniform_real_distribution<double> u(0.0, 1.0);
         if (options_.faults.bitflip_probability > 0.0 && u(rng_) < options_.faults.bitflip_probability) {
             std::uniform_int_distribution<std::size_t> pos(0, scan.size() - 1);
@@ -282,15 +295,8 @@ void LmsDevice::tick(int64_t now_us, int host_baud, Bytes& out)
             scan.resize(keep);  // the line cut mid-telegram; the next scan follows as usual
             ++stats_.scans_truncated;
         }
-        if (!silent(now_us)) ++stats_.scans_sent;
-        send(std::move(scan), host_baud, now_us, out, true);
-    }
-    next_scan_us_ += period_us;
-    // Fell behind (the process was not scheduled): drop the missed scans, keep the phase.
-    if (next_scan_us_ <= now_us) {
-        const int64_t missed = (now_us - next_scan_us_) / period_us + 1;
-        stats_.scans_skipped += static_cast<uint64_t>(missed);
-        next_scan_us_ += missed * period_us;
+        if (!silent(due_us)) ++stats_.scans_sent;
+        send(std::move(scan), host_baud, due_us, out, true);
     }
 }
 

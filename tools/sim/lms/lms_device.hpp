@@ -62,7 +62,7 @@ struct DeviceStats
     uint64_t naks = 0;            // NAK bytes sent
     uint64_t garbled_input = 0;   // host bytes received at a wrong baud (ignored)
     uint64_t scans_sent = 0;
-    uint64_t scans_skipped = 0;   // due while the line was still busy
+    uint64_t scans_skipped = 0;   // due while the line was still busy, or over 1 s late
     uint64_t baud_switches = 0;
     uint64_t bytes_damaged = 0;   // bytes with a bit flipped by the bit error rate
     uint64_t scans_truncated = 0;
@@ -98,6 +98,8 @@ private:
     void send(std::vector<uint8_t> bytes, int host_baud, int64_t now_us, std::vector<uint8_t>& out, bool is_telegram);
     bool silent(int64_t now_us) const;
     std::vector<uint8_t> make_scan(int64_t now_us);
+    // The scan that fell due at due_us, unless the line is still busy then.
+    void send_scan(int64_t due_us, int host_baud, std::vector<uint8_t>& out);
 
     DeviceOptions options_;
     sick_lms2xx::Decoder decoder_{sick_lms2xx::kHostAddress};

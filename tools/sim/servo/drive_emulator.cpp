@@ -86,6 +86,10 @@ void DriveEmulator::raise_fault(uint16_t error_code, int64_t now_us)
 void DriveEmulator::on_frame(const io::CanFrame& f, int64_t now_us)
 {
     if (!powered_ || now_us < off_bus_until_us_ || f.extended) return;
+    // What fell due before the frame happens first: jumping the clock to the frame's time
+    // would skip the physics steps and the TPDOs of a stretch the host process was not
+    // scheduled (a simulator serviced 50 ms late lost four of every five TPDOs of it).
+    advance(now_us);
     now_us_ = std::max(now_us_, now_us);
     if (auto cmd = co::decode_nmt(f, node_)) {
         switch (*cmd) {

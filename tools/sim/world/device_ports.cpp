@@ -71,6 +71,7 @@ ServoPort::ServoPort(const std::string& link_path, const simworld::Scenario& s, 
 {
     drive_.power_on(now_utime);
     tilt_.add(now_utime, tilt_rad());
+    last_step_utime_ = now_utime;
 }
 
 double ServoPort::tilt_rad() const
@@ -80,14 +81,30 @@ double ServoPort::tilt_rad() const
 
 std::size_t ServoPort::service(bool readable, int64_t now)
 {
+    // The axis's path millisecond by millisecond, so that the laser's beams see the tilt the
+    // drive had at their time even across a stall of this process (the drive catches up in
+    // 1 ms steps; one sample at the end would draw a straight line through a turn-around).
+    for (int64_t t = last_step_utime_ + 1000; t <= now; t += 1000) {
+        drive_.advance(t);
+        tilt_.add(t, tilt_rad());
+        last_step_utime_ = t;
+    }
     std::vector<uint8_t> in;
     if (readable && read_input(in) > 0)
         for (const auto& f : adapter_.feed(in.data(), in.size(), now)) drive_.on_frame(f, now);
     drive_.advance(now);
     tilt_.add(now, tilt_rad());
-    for (const auto& f : drive_.take_outgoing()) adapter_.on_bus_frame(f, now);
+    for (const auto& f : drive_.take_outgoing()) {
+        adapter_.on_bus_frame(f, now);
+        ++frames_sent_;
+    }
     const std::string out = adapter_.take_output();
     return write_output(reinterpret_cast<const uint8_t*>(out.data()), out.size());
+}
+
+std::string ServoPort::summary() const
+{
+    return "servo: " + std::to_string(frames_sent_) + " CAN frames from the drive";
 }
 
 LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed)
@@ -113,6 +130,13 @@ std::size_t LmsPort::service(bool readable, int64_t now)
     if (readable && read_input(in) > 0) device_->receive(in.data(), in.size(), host_baud, now, out);
     device_->tick(now, host_baud, out);
     return write_output(out.data(), out.size());
+}
+
+std::string LmsPort::summary() const
+{
+    const lms::DeviceStats& s = device_->stats();
+    return "lms: " + std::to_string(s.scans_sent) + " scans sent, " + std::to_string(s.scans_skipped) +
+           " skipped (due while the line was busy or the simulator was late)";
 }
 
 GpsPort::GpsPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed)
@@ -152,8 +176,14 @@ std::size_t GpsPort::service(bool readable, int64_t now)
     std::string out;
     if (readable && read_input(in) > 0 && baud_matches) out = receiver_->on_host_bytes(in.data(), in.size());
     out += receiver_->tick(now);
+    bytes_sent_ += out.size();
     if (!baud_matches) return out.size();
     return write_output(reinterpret_cast<const uint8_t*>(out.data()), out.size());
+}
+
+std::string GpsPort::summary() const
+{
+    return "gps: " + std::to_string(bytes_sent_) + " bytes sent";
 }
 
 ImuPort::ImuPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed)
@@ -194,6 +224,11 @@ std::size_t ImuPort::service(bool readable, int64_t now)
     q.clear();
     if (!baud_matches) return out.size();
     return write_output(out.data(), out.size());
+}
+
+std::string ImuPort::summary() const
+{
+    return "imu: " + std::to_string(unit_->counters().frames_streamed) + " frames streamed";
 }
 
 }  // namespace ugv::sim::world

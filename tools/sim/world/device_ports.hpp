@@ -31,6 +31,8 @@ public:
     // Reads what the host wrote (readable: poll said so), runs the device up to now_utime,
     // writes its output. Returns bytes the host did not take (dropped, as on a full UART).
     virtual std::size_t service(bool readable, int64_t now_utime) = 0;
+    // One line for the end-of-run report: what the device sent.
+    virtual std::string summary() const = 0;
 
 protected:
     std::size_t read_input(std::vector<uint8_t>& into);
@@ -56,12 +58,15 @@ public:
     ServoPort(const std::string& link_path, const simworld::Scenario& scenario, int64_t now_utime, TiltHistory& tilt);
     std::size_t service(bool readable, int64_t now_utime) override;
     double tilt_rad() const;
+    std::string summary() const override;
 
 private:
     servo::DriveEmulator drive_;
     servo::SlcanAdapter adapter_;
     double counts_per_rad_;
     TiltHistory& tilt_;
+    int64_t last_step_utime_ = 0;
+    uint64_t frames_sent_ = 0;
 };
 
 class LmsPort : public DevicePort
@@ -70,6 +75,7 @@ public:
     LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed);
     std::size_t service(bool readable, int64_t now_utime) override;
     const lms::DeviceStats& stats() const { return device_->stats(); }
+    std::string summary() const override;
 
 private:
     std::unique_ptr<lms::LmsDevice> device_;
@@ -81,9 +87,11 @@ class GpsPort : public DevicePort
 public:
     GpsPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed);
     std::size_t service(bool readable, int64_t now_utime) override;
+    std::string summary() const override;
 
 private:
     std::unique_ptr<gps::GpsEmulator> receiver_;
+    uint64_t bytes_sent_ = 0;
 };
 
 class ImuPort : public DevicePort
@@ -92,6 +100,7 @@ public:
     static constexpr int kBaud = 38400;
     ImuPort(const std::string& link_path, const simworld::World& world, int64_t now_utime, uint32_t seed);
     std::size_t service(bool readable, int64_t now_utime) override;
+    std::string summary() const override;
 
 private:
     std::unique_ptr<imu::Gx1Emulator> unit_;

@@ -23,6 +23,7 @@
 #include "ugv/canopen/setpoint.hpp"
 #include "ugv/canopen/units.hpp"
 #include "ugv/io/can_frame.hpp"
+#include "ugv/io/periodic_clock.hpp"
 
 namespace ugv::canopen {
 
@@ -85,6 +86,7 @@ struct DriveCounters
     uint64_t setpoint_timeouts = 0;
     uint64_t tpdo_received = 0;
     uint64_t tpdo_implausible = 0;  // TPDOs dropped by check_tpdo_plausibility
+    uint64_t clock_restarts = 0;    // TPDO1 stamp clock restarts (ugv/io/periodic_clock.hpp)
 };
 
 class Drive
@@ -99,7 +101,12 @@ public:
     // Halt, then disable (switch the power stage off). Ends in Phase::stopped.
     void stop(int64_t now_us);
 
+    // utime: the frame's receive time. Without SYNC a TPDO1's sample is stamped on the
+    // drive's own event-timer cadence (io::PeriodicClock), so TPDOs read together after a
+    // host stall keep their own times.
     void on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime);
+    // A frame was lost on the way (a malformed slcan line): it may have been a TPDO1.
+    void note_lost_frame() { ++lost_frames_; }
     void tick(int64_t now_us);
 
     // The next set-point (rad, clamped into the configured limits) and the speed to move
@@ -165,6 +172,8 @@ private:
     std::optional<DriveSample> last_;
     std::optional<Tpdo1Reading> last_tpdo1_reading_;  // accepted or not
     bool holding_tpdo1_ = false;  // the last reading waits for the next one to confirm it
+    io::PeriodicClock tpdo1_clock_{0.01};
+    int lost_frames_ = 0;
     uint16_t last_emcy_code_ = 0;
 
     // What the drive was last sent through the RPDOs (send only changes, and on retries).

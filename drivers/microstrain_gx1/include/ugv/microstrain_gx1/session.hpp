@@ -21,7 +21,7 @@
 #include <string>
 
 #include "ugv/io/byte_stream.hpp"
-#include "ugv/microstrain_gx1/clock_filter.hpp"
+#include "ugv/io/device_clock_filter.hpp"
 #include "ugv/microstrain_gx1/frame_parser.hpp"
 #include "ugv/microstrain_gx1/orientation.hpp"
 #include "ugv/microstrain_gx1/scaling.hpp"
@@ -108,7 +108,7 @@ private:
     SessionConfig config_;
     FrameConverter converter_;
     FrameParser parser_;
-    DeviceClockFilter clock_;
+    io::DeviceClockFilter clock_;
     TickUnwrapper ticks_;
     DeviceInfo info_;
     SessionCounters counters_;

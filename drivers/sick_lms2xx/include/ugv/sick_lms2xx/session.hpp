@@ -17,6 +17,7 @@
 
 #include "ugv/io/byte_stream.hpp"
 #include "ugv/sick_lms2xx/decoder.hpp"
+#include "ugv/io/periodic_clock.hpp"
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/scan.hpp"
 
@@ -48,7 +49,7 @@ const char* to_string(SessionState s);
 struct StampedScan
 {
     Scan scan;
-    int64_t arrival_utime = 0;     // when the telegram's last byte arrived
+    int64_t arrival_utime = 0;     // when the telegram's last byte arrived (unfiltered)
     int64_t first_beam_utime = 0;  // see timing.hpp
     double time_increment_s = 0.0;
     double scan_period_s = 0.0;
@@ -67,6 +68,7 @@ struct SessionStats
     std::atomic<int64_t> reconnects{0};   // times streaming was lost and recovery started
     std::atomic<int64_t> bytes_in{0};
     std::atomic<int64_t> bad_scans{0};    // good CRC but undecodable or wrong value count
+    std::atomic<int64_t> clock_restarts{0};  // scan clock restarts (see ugv/io/periodic_clock.hpp)
 };
 
 struct SessionCallbacks
@@ -146,6 +148,9 @@ private:
     bool got_ack_ = false, got_nak_ = false, got_reply_ = false, got_telegram_ = false;
     std::vector<uint8_t> reply_;  // data of the awaited reply (after CMD, without STATUS)
     int64_t chunk_utime_ = 0;
+    io::PeriodicClock scan_clock_{0.0};  // set up for the configured resolution when streaming starts
+    uint64_t rejected_frames_at_last_scan_ = 0;  // decoder CRC + length errors then
+    int scans_rejected_since_last_ = 0;
     StampedScan scan_;
     std::vector<uint8_t> rx_;
 };

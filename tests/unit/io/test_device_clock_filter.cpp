@@ -4,10 +4,11 @@
 #include <cmath>
 #include <random>
 
-#include "ugv/microstrain_gx1/clock_filter.hpp"
+#include "ugv/io/device_clock_filter.hpp"
 #include "ugv/microstrain_gx1/tick_unwrapper.hpp"
 
-using namespace ugv::microstrain_gx1;
+using ugv::io::DeviceClockFilter;
+using ugv::microstrain_gx1::TickUnwrapper;
 
 namespace {
 

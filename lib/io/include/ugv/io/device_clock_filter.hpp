@@ -1,7 +1,8 @@
-// Host time stamps from the device timer: a filtered offset-and-drift model, so that the
-// jitter of serial arrival (scheduling, USB latency, chunking) does not reach utime.
+// Host time stamps from a device's own clock (a sample timer, a scan count): a filtered
+// offset-and-drift model, so that the jitter of serial arrival (scheduling, USB latency,
+// chunking) does not reach utime. Used by the GX1 (its u16 timer) and the LMS (its scans).
 //
-// The device samples on its own clock; the host sees each frame's first byte some time
+// The device samples on its own clock; the host sees each frame some time
 // later: arrival = truth + delay, with delay >= 0 and often large. The model
 //   host_time = host0 + device_elapsed + offset + drift * device_elapsed
 // is fitted to the LOWER envelope of the arrivals: per block of device time the sample with
@@ -17,7 +18,7 @@
 #include <cstdint>
 #include <deque>
 
-namespace ugv::microstrain_gx1 {
+namespace ugv::io {
 
 class DeviceClockFilter
 {
@@ -60,4 +61,4 @@ private:
     std::size_t restarts_ = 0;
 };
 
-}  // namespace ugv::microstrain_gx1
+}  // namespace ugv::io

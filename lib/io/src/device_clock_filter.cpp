@@ -1,9 +1,9 @@
-#include "ugv/microstrain_gx1/clock_filter.hpp"
+#include "ugv/io/device_clock_filter.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace ugv::microstrain_gx1 {
+namespace ugv::io {
 
 void DeviceClockFilter::reset()
 {
@@ -80,4 +80,4 @@ int64_t DeviceClockFilter::update(double device_s, int64_t arrival_utime)
     return host0_us_ + static_cast<int64_t>(std::llround((x + y_hat) * 1e6));
 }
 
-}  // namespace ugv::microstrain_gx1
+}  // namespace ugv::io
