@@ -45,6 +45,17 @@ for u in "${units[@]}"; do
 done
 grep -q -- '--lcm-url=' "$units_dir/ugv-logger.service" && check ok "ugv-logger uses --lcm-url= (not the broken -l)" \
   || check no "ugv-logger must use --lcm-url="
+# ugv-logger's own command line runs (verify does not run it): lcm-logger refused the -i
+# --rotate pair we once shipped and exited at once. Here on a test port, into a scratch
+# LOGS_DIRECTORY, for 2 s; it must still be running then, with ugv.lcm.0 written.
+exec_line=$(sed -n 's/^ExecStart=//p' "$units_dir/ugv-logger.service")
+logs=$root/var/log/ugv && mkdir -p "$logs"
+cmd=${exec_line//\$\{LOGS_DIRECTORY\}/$logs}
+cmd=${cmd/239.255.76.67:7667?ttl=1/239.255.76.67:7615?ttl=0}
+# shellcheck disable=SC2086  # the unit's words, as systemd splits them
+timeout -s INT 2 $cmd >"$root/logger.out" 2>&1; rc=$?
+[ $rc -eq 124 ] && [ -f "$logs/ugv.lcm.0" ] && check ok "ugv-logger's ExecStart runs (still up after 2 s, ugv.lcm.0 written)" \
+  || check no "ugv-logger's ExecStart exited with $rc: $(tr '\n' ' ' <"$root/logger.out")"
 # Each installed default config is accepted by its daemon, and each unit's --config names one.
 for cfg in "$root"/etc/ugv/*.toml; do
   name=$(basename "$cfg" .toml); daemon=ugv-${name%%-*}
