@@ -62,8 +62,21 @@ stack_spawn() {
 
 stack_alive() { [ -n "${STACK_PIDS[$1]:-}" ] && kill -0 "${STACK_PIDS[$1]}" 2>/dev/null; }
 
+# lcm-logger with libugv-lcm-queue.so preloaded (as ugv-logger.service runs it): without it,
+# liblcm's 30-message subscription queue drops what arrives while the logger's main loop is
+# not scheduled (tools/lcm_queue). Found next to the binaries (build/lib) or installed.
+stack_lcm_queue_lib() {
+    local f
+    for f in "$STACK_BIN/../lib/libugv-lcm-queue.so" /usr/lib/ugv/libugv-lcm-queue.so; do
+        [ -f "$f" ] && { echo "$f"; return 0; }
+    done
+    return 1
+}
+
 stack_start_logger() {
-    stack_spawn lcm-logger lcm-logger --lcm-url="$STACK_URL" -f "$@" "$STACK_OUT/ugv.lcm"
+    local preload
+    preload=$(stack_lcm_queue_lib) || echo "stack: libugv-lcm-queue.so not found: lcm-logger may drop messages after a stall" >&2
+    LD_PRELOAD=${preload:-} stack_spawn lcm-logger lcm-logger --lcm-url="$STACK_URL" -f "$@" "$STACK_OUT/ugv.lcm"
 }
 
 stack_has_world() { "$STACK_BIN/ugv-sim" --help 2>/dev/null | grep -q '^  world '; }

@@ -52,8 +52,11 @@ exec_line=$(sed -n 's/^ExecStart=//p' "$units_dir/ugv-logger.service")
 logs=$root/var/log/ugv && mkdir -p "$logs"
 cmd=${exec_line//\$\{LOGS_DIRECTORY\}/$logs}
 cmd=${cmd/239.255.76.67:7667?ttl=1/239.255.76.67:7615?ttl=0}
+preload=$(sed -n 's/^Environment=LD_PRELOAD=//p' "$units_dir/ugv-logger.service")
+[ -n "$preload" ] && [ -f "$root$preload" ] && check ok "ugv-logger's LD_PRELOAD $preload is installed" \
+  || check no "ugv-logger's LD_PRELOAD '${preload}' is not installed"
 # shellcheck disable=SC2086  # the unit's words, as systemd splits them
-timeout -s INT 2 $cmd >"$root/logger.out" 2>&1; rc=$?
+LD_PRELOAD=$root$preload timeout -s INT 2 $cmd >"$root/logger.out" 2>&1; rc=$?
 [ $rc -eq 124 ] && [ -f "$logs/ugv.lcm.0" ] && check ok "ugv-logger's ExecStart runs (still up after 2 s, ugv.lcm.0 written)" \
   || check no "ugv-logger's ExecStart exited with $rc: $(tr '\n' ' ' <"$root/logger.out")"
 # Each installed default config is accepted by its daemon, and each unit's --config names one.
