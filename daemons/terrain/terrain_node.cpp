@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "lcm_convert.hpp"
 
@@ -55,6 +56,26 @@ void TerrainNode::on_pose(const pose_t& msg)
         ++counters_.poses_rejected_status;
         return;
     }
+    // A pose far after the newest one is a clock gone wrong (one message: taken, it would
+    // make every later pose out of order and freeze the map) or the stream resuming after a
+    // gap (the next pose agrees with it). It is held until the next pose tells which.
+    if (mapper_.has_pose() && leads_too_far(msg.utime, mapper_.poses().newest_us())) {
+        const bool confirms = held_jump_ && msg.utime > held_jump_->utime && !leads_too_far(msg.utime, held_jump_->utime);
+        if (!confirms) {
+            if (held_jump_) ++counters_.poses_rejected_time;
+            held_jump_ = msg;
+            return;
+        }
+        accept_pose(*std::exchange(held_jump_, std::nullopt));
+    } else if (held_jump_) {
+        ++counters_.poses_rejected_time;  // the jump was one bad message
+        held_jump_.reset();
+    }
+    accept_pose(msg);
+}
+
+void TerrainNode::accept_pose(const pose_t& msg)
+{
     if (mapper_.add_pose(to_pose(msg)) == terrain::PoseHistory::AddResult::added) {
         last_pose_ = msg;
         have_pose_ = true;

@@ -8,6 +8,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <ugv/point_cloud_t.hpp>
@@ -26,7 +27,7 @@ struct NodeCounters
     uint64_t clouds_in = 0;
     uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, or no time (utime <= 0)
     uint64_t clouds_rejected_time = 0;   // more than kMaxCloudLeadUs after the newest pose: a bad clock
-    uint64_t poses_rejected_time = 0;    // utime <= 0: no time
+    uint64_t poses_rejected_time = 0;    // utime <= 0, or a jump of > 5 s the next pose did not confirm
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
@@ -50,6 +51,7 @@ public:
 private:
     void fuse(const point_cloud_t& msg);
     void fuse_ready(bool all);
+    void accept_pose(const pose_t& msg);
     void maybe_publish(int64_t message_time_us);
 
     TerrainDaemonConfig config_;
@@ -63,6 +65,7 @@ private:
     std::map<std::string, std::deque<int64_t>> recent_cloud_utimes_;
     pose_t last_pose_{};
     bool have_pose_ = false;
+    std::optional<pose_t> held_jump_;  // a pose > 5 s after the newest, until the next one
     int64_t period_us_;
     int64_t next_publish_us_ = 0;
     int64_t seq_ = 0;

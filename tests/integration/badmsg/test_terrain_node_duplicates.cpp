@@ -121,3 +121,38 @@ TEST_CASE("TerrainNode: a cloud stamped far in the future is rejected; it neithe
     CHECK(maps.size() >= 6);
     CHECK(maps.back() >= t0 + 2'500'000);
 }
+
+TEST_CASE("TerrainNode: one pose stamped far in the future is dropped; a real gap is taken once the next pose confirms it")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    node.on_pose(pose_at(t0 + 365LL * 86'400'000'000));  // a year ahead: a clock gone wrong
+    node.on_pose(pose_at(t0 + 100'000));
+    node.on_points(cloud_at(t0 + 150'000, "front", 10));
+    node.on_pose(pose_at(t0 + 200'000));
+    node.flush();
+    // Taken, the year-ahead pose would have made every later one out of order.
+    CHECK(node.counters().poses_rejected_time == 1);
+    CHECK(node.mapper().poses().newest_us() == t0 + 200'000);
+    CHECK(node.mapper().counters().points_fused == 10);
+
+    // The pose stream resumes 60 s later: the first pose waits for the second, then both count.
+    const int64_t t1 = t0 + 60'000'000;
+    node.on_pose(pose_at(t1));
+    CHECK(node.mapper().poses().newest_us() == t0 + 200'000);
+    node.on_pose(pose_at(t1 + 100'000));
+    CHECK(node.mapper().poses().newest_us() == t1 + 100'000);
+    node.on_points(cloud_at(t1 + 150'000, "front", 10));
+    node.on_pose(pose_at(t1 + 200'000));
+    node.flush();
+    CHECK(node.counters().poses_rejected_time == 1);
+    CHECK(node.mapper().counters().points_fused == 20);
+
+    // Two far-future poses that disagree with each other: neither is taken.
+    node.on_pose(pose_at(t1 + 3'600'000'000LL));
+    node.on_pose(pose_at(t1 + 7'200'000'000LL));
+    node.on_pose(pose_at(t1 + 300'000));
+    CHECK(node.counters().poses_rejected_time == 3);
+    CHECK(node.mapper().poses().newest_us() == t1 + 300'000);
+}
