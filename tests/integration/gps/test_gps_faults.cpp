@@ -1,10 +1,11 @@
 // ugv-gps against `ugv-sim gps` with line faults (issue 11, device faults), real LCM on ports
-// 7757-7761: bit errors at 1e-3 and 1e-2 per byte, truncated frames, a receiver left at
+// 7757-7763: bit errors at 1e-3 and 1e-2 per byte (binary and NMEA), truncated frames, a receiver left at
 // another baud (configure mode finds it by probing; passive mode says which rate it listens
 // at and recovers once the rates match). The emulator runs without noise, so every fix the
 // daemon publishes must be its exact position: a corrupted fix that got through would not.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <csignal>
 #include <mutex>
 #include <string>
@@ -77,6 +78,45 @@ TEST_CASE("ugv-gps: bit errors at 1e-3 and 1e-2 per byte are counted, never publ
     };
     SECTION("1e-3") { run(7757, "0.001", 40); }
     SECTION("1e-2") { run(7758, "0.01", 20); }
+}
+
+TEST_CASE("ugv-gps, NMEA: bit errors at 1e-3 and 1e-2; a wrong fix only where the damage kept the checksum")
+{
+    // NMEA's checksum is an XOR: two flips of one bit in a sentence cancel (~3 % of 70-byte
+    // GGA sentences at 1e-2). The emulator counts the damaged sentences whose checksum still
+    // holds; the daemon cannot see those, so that many wrong fixes are allowed, and no more.
+    const auto run = [](int port, const std::string& rate, std::size_t want_fixes) {
+        Listener l(port);
+        Rig rig;
+        rig.start_sim({"--protocol", "nmea", "--bit-error-rate", rate, "--seed", "7"});
+        rig.start_daemon("mode = \"configure\"\nprotocol = \"nmea\"\nperiod_s = 0.1\nsilence_timeout_s = 2.0\n", port);
+        INFO("bit error rate " << rate << "\n" << rig.logs());
+        REQUIRE(l.wait([&] { return l.t.nfix() >= want_fixes; }, 40.0));
+        REQUIRE(l.wait([&] { return l.t.counter("crc_errors") > 0; }, 10.0));
+        stop_cleanly(rig);
+        rig.sim->signal(SIGTERM);
+        REQUIRE(rig.sim->wait_exit(5.0) == 0);
+        const std::string summary = rig.sim->err();
+        const std::size_t at = summary.find(" NMEA sentences damaged unseen");
+        REQUIRE(at != std::string::npos);
+        const std::size_t from = summary.rfind(' ', at - 1) + 1;
+        const int unseen = std::stoi(summary.substr(from, at - from));
+        int wrong = 0, total = 0;
+        {
+            std::lock_guard<std::mutex> g(l.t.m);
+            for (const auto& f : l.t.fixes) {
+                ++total;
+                wrong += std::fabs(f.latitude - ugv::test::gps::kLat) > 1e-7 ||
+                         std::fabs(f.longitude - ugv::test::gps::kLon) > 1e-7 ||
+                         std::fabs(f.height - (750.0 - 17.0)) > 1e-3;
+            }
+        }
+        INFO(total << " fixes, " << wrong << " wrong, " << unseen << " sentences damaged with a valid checksum");
+        CHECK(wrong <= unseen);
+        CHECK(l.t.counter("malformed") == 0);
+    };
+    SECTION("1e-3") { run(7762, "0.001", 60); }
+    SECTION("1e-2") { run(7763, "0.01", 40); }
 }
 
 TEST_CASE("ugv-gps: truncated frames are counted and dropped, the stream goes on")

@@ -1,10 +1,12 @@
 // The receiver emulator's logic (tools/sim/gps), without a pty.
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "capture_file.hpp"
+#include "ugv/novatel/checksum.hpp"
 #include "ugv/novatel/decoder.hpp"
 #include "ugv/novatel/enums.hpp"
 #include "ugv/sim/gps_emulator.hpp"
@@ -221,4 +223,27 @@ TEST_CASE("parse_script rejects unknown position types")
     REQUIRE(s.size() == 2);
     CHECK(s[0].position_type == position_type::single);
     CHECK(s[1].at_s == 5.0);
+}
+
+TEST_CASE("Emulator: damaged NMEA sentences whose checksum still holds are counted as unseen")
+{
+    const auto sentence = [](const std::string& body) {
+        char sum[8];
+        std::snprintf(sum, sizeof sum, "*%02X\r\n",
+                      ugv::novatel::nmea_checksum(reinterpret_cast<const uint8_t*>(body.data()), body.size()));
+        return "$" + body + sum;
+    };
+    const std::string sent = sentence("GPGGA,120000.00,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,") +
+                             sentence("GPGST,120000.00,1.0,0.5,0.3,45.0,0.5,0.4,0.8");
+    CHECK(ugv::sim::gps::count_nmea_damage_unseen(sent, sent) == 0);
+    std::string one_flip = sent;
+    one_flip[20] ^= 0x01;  // a digit of the latitude: the checksum no longer holds
+    CHECK(ugv::sim::gps::count_nmea_damage_unseen(sent, one_flip) == 0);
+    std::string two_flips = sent;
+    two_flips[20] ^= 0x01;  // the same bit in two bytes of one sentence: the XOR is unchanged
+    two_flips[30] ^= 0x01;
+    CHECK(ugv::sim::gps::count_nmea_damage_unseen(sent, two_flips) == 1);
+    std::string framing = two_flips;
+    framing[0] ^= 0x04;  // '$' -> ' ': the host does not see this sentence at all
+    CHECK(ugv::sim::gps::count_nmea_damage_unseen(sent, framing) == 0);
 }

@@ -132,10 +132,11 @@ int gps_main(int argc, char** argv)
             write_some(pty->master_fd(), baud_matches ? out : garble(out, rng));
         }
     }
-    std::fprintf(stderr, "%s: commands %llu, bit errors %llu bytes, truncated %llu frames\n", argv[0],
+    std::fprintf(stderr, "%s: commands %llu, bit errors %llu bytes, truncated %llu frames, %llu NMEA sentences damaged unseen\n", argv[0],
                  static_cast<unsigned long long>(emulator.commands_received()),
                  static_cast<unsigned long long>(emulator.bytes_damaged()),
-                 static_cast<unsigned long long>(emulator.frames_truncated()));
+                 static_cast<unsigned long long>(emulator.frames_truncated()),
+                 static_cast<unsigned long long>(emulator.nmea_damage_unseen()));
     return 0;
 }
 

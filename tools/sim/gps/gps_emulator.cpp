@@ -4,9 +4,11 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
+#include "ugv/novatel/checksum.hpp"
 #include "ugv/novatel/encoding.hpp"
 #include "ugv/novatel/enums.hpp"
 #include "ugv/novatel/fix_quality.hpp"
@@ -359,8 +361,32 @@ std::string GpsEmulator::tick(int64_t now_utime)
         }
         next_garbage_utime_ += static_cast<int64_t>(config_.garbage_period_s * 1e6);
     }
+    if (config_.bit_error_rate <= 0.0) return out;
+    const std::string sent = out;
     bytes_damaged_ += flip_bits(out.begin(), out.end(), config_.bit_error_rate, rng_);
+    nmea_damage_unseen_ += count_nmea_damage_unseen(sent, out);
     return out;
+}
+
+uint64_t count_nmea_damage_unseen(const std::string& sent, const std::string& received)
+{
+    // NMEA's checksum is the XOR of the bytes between '$' and '*': two flips of the same bit
+    // in one sentence cancel. Such a sentence reaches the host changed but valid.
+    uint64_t unseen = 0;
+    for (std::size_t start = sent.find('$'); start != std::string::npos; start = sent.find('$', start + 1)) {
+        const std::size_t star = sent.find('*', start);
+        if (star == std::string::npos || star + 3 > sent.size() || star + 3 > received.size()) break;
+        if (received.compare(start, star + 3 - start, sent, start, star + 3 - start) == 0) continue;  // intact
+        if (received[start] != '$' || received[star] != '*' ||
+            received.find('*', start + 1) != star)  // the framing itself was hit: not this sentence
+            continue;
+        const auto* body = reinterpret_cast<const uint8_t*>(received.data() + start + 1);
+        const uint8_t sum = novatel::nmea_checksum(body, star - start - 1);
+        char hex[3];
+        std::snprintf(hex, sizeof hex, "%02X", sum);
+        if (received.compare(star + 1, 2, hex) == 0) ++unseen;
+    }
+    return unseen;
 }
 
 }  // namespace ugv::sim::gps

@@ -80,6 +80,9 @@ public:
     uint64_t commands_received() const { return commands_; }
     uint64_t bytes_damaged() const { return bytes_damaged_; }
     uint64_t frames_truncated() const { return frames_truncated_; }
+    // NMEA sentences the bit errors changed while their checksum still holds: the host cannot
+    // tell them from good ones (tests allow that many wrong fixes, and no more).
+    uint64_t nmea_damage_unseen() const { return nmea_damage_unseen_; }
 
 private:
     struct ActiveLog
@@ -106,7 +109,12 @@ private:
     uint64_t commands_ = 0;
     uint64_t bytes_damaged_ = 0;
     uint64_t frames_truncated_ = 0;
+    uint64_t nmea_damage_unseen_ = 0;
 };
+
+// Of the NMEA sentences in `sent`, how many arrive as `received` (same length, some bits
+// flipped) changed but with a checksum that still holds.
+uint64_t count_nmea_damage_unseen(const std::string& sent, const std::string& received);
 
 // "SINGLE@0,PSRDIFF@5,NARROW_INT@10" -> steps; throws std::invalid_argument on a bad item.
 std::vector<ScriptStep> parse_script(const std::string& text);
