@@ -23,7 +23,7 @@ DeviceLoop::DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config, Outbox& 
 {
     // Every counter exists from the start, so the status lists them all at zero.
     for (const char* name : {"frames", "checksum_errors", "resyncs", "bytes_skipped", "reconnects", "silences",
-                             "handshake_failures", "clock_restarts", "published", "publish_failures"})
+                             "handshake_failures", "clock_restarts", "implausible", "published", "publish_failures"})
         d_.counters()[name];
     d_.set_health_timeout_us(int64_t{config_.session.silence_timeout_ms} * 1000);
 }
@@ -48,6 +48,7 @@ void DeviceLoop::sync_counters(const gx1::Session& session)
     c["silences"].store(static_cast<int64_t>(s.silences));
     c["handshake_failures"].store(static_cast<int64_t>(s.handshake_failures));
     c["clock_restarts"].store(static_cast<int64_t>(s.clock_restarts));
+    c["implausible"].store(static_cast<int64_t>(s.implausible));
 }
 
 void DeviceLoop::run()

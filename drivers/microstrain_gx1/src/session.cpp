@@ -149,6 +149,7 @@ Session::Status Session::initialise()
     parser_.accept_only({config_.command});
     clock_.reset();
     ticks_.reset();
+    plausibility_.reset();
     streaming_ = true;
     last_frame_us_ = next_poll_us_ = io::monotonic_us();
     ++counters_.initialisations;
@@ -160,6 +161,10 @@ void Session::emit(const Frame& f, const SampleHandler& on_sample)
 {
     Sample s;
     s.device = decode_sample(f, info_.gains);
+    // Before the timer reaches the unwrapper and the clock: a damaged timer word would move both.
+    const bool plausible = plausibility_.check(s.device, info_.tick_period_s);
+    counters_.implausible = plausibility_.implausible();
+    if (!plausible) return;
     s.device_ticks = ticks_.unwrap(f.ticks());
     s.arrival_utime = f.first_byte_utime;
     const std::size_t restarts = clock_.restarts();

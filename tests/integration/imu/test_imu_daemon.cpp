@@ -321,8 +321,11 @@ namespace {
 // words, so two flips of the same bit weight in opposite directions cancel: such a frame is
 // published as it arrived. A Monte Carlo of 0x31 frames gives 6e-6 per frame at 1e-3 and
 // 6e-4 at 1e-2 (most of them small); 150 s at 1e-2 through ugv-imu published 1 wrong sample
-// of 5977 (roll 55 deg, accel z 30 m/s^2). `undetectable` is how many of those a run of this
-// length may show: 0 at 1e-3; at most 1 at 1e-2 (about 0.05 are expected in 400 frames).
+// of 5977 (roll 55 deg, accel z 30 m/s^2). The session's plausibility check
+// (sample_plausibility.hpp) now drops such a sample (`implausible`); a small error within its
+// bounds (an accel word off by a few m/s^2) still passes. `undetectable` is how many of those
+// a run of this length may show: 0 at 1e-3; at most 1 at 1e-2 (about 0.05 are expected in
+// 400 frames).
 void run_with_bit_errors(const std::string& rate, int port, std::size_t undetectable)
 {
     ImuRun run(port, {"--bit-error-rate", rate, "--seed", "11"});
@@ -340,11 +343,11 @@ void run_with_bit_errors(const std::string& rate, int port, std::size_t undetect
     CHECK(wrong <= undetectable);
     const int64_t missing = ticks.missing;
     std::printf("imu bit error rate %s: %zu samples published (%zu wrong), %lld frames dropped (%.1f %%), "
-                "checksum_errors %lld, resyncs %lld, bytes_skipped %lld\n",
+                "checksum_errors %lld, implausible %lld, resyncs %lld, bytes_skipped %lld\n",
                 rate.c_str(), imu.size(), wrong, static_cast<long long>(missing),
                 100.0 * static_cast<double>(missing) / static_cast<double>(missing + static_cast<int64_t>(imu.size())),
                 static_cast<long long>(listen.counter("checksum_errors")),
-                static_cast<long long>(listen.counter("resyncs")), static_cast<long long>(listen.counter("bytes_skipped")));
+                static_cast<long long>(listen.counter("implausible")), static_cast<long long>(listen.counter("resyncs")), static_cast<long long>(listen.counter("bytes_skipped")));
     run.stop();
 }
 

@@ -22,6 +22,7 @@
 
 #include "ugv/io/byte_stream.hpp"
 #include "ugv/io/device_clock_filter.hpp"
+#include "ugv/microstrain_gx1/sample_plausibility.hpp"
 #include "ugv/microstrain_gx1/frame_parser.hpp"
 #include "ugv/microstrain_gx1/orientation.hpp"
 #include "ugv/microstrain_gx1/scaling.hpp"
@@ -69,6 +70,7 @@ struct SessionCounters
     uint64_t silences = 0;             // streams that went quiet
     uint64_t eeprom_invalid = 0;       // EEPROM gains/timing refused (defaults kept)
     uint64_t clock_restarts = 0;
+    uint64_t implausible = 0;          // frames with a valid checksum that disagreed with both neighbours
 };
 
 class Session
@@ -110,6 +112,7 @@ private:
     FrameParser parser_;
     io::DeviceClockFilter clock_;
     TickUnwrapper ticks_;
+    SamplePlausibility plausibility_;
     DeviceInfo info_;
     SessionCounters counters_;
     std::string error_;
