@@ -85,7 +85,8 @@ bool SlcanTransport::command(const std::string& cmd, int timeout_ms)
             }
         }
     }
-    error_ = describe() + ": no answer to '" + cmd.substr(0, cmd.size() - 1) + "'";
+    error_ = describe() + ": no answer to '" + cmd.substr(0, cmd.size() - 1) + "' (no adapter, or its serial side is not at " +
+             std::to_string(serial_baud_) + " baud)";
     return false;
 }
 

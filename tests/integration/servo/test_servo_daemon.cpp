@@ -417,3 +417,22 @@ TEST_CASE("ugv-servo on a bus at another bitrate: DEGRADED naming the bitrate, n
     run.servo->signal(SIGTERM);
     CHECK(run.servo->wait_exit(5.0) == 0);
 }
+
+TEST_CASE("ugv-servo with the adapter's serial side at another rate: DEGRADED naming the rate, nothing published, back when it matches")
+{
+    // The adapter at 57600, the daemon at 115200: neither understands the other.
+    FaultRun run(7858, {"--serial-baud", "57600"});
+    if (!run.watch->until([&] { return !run.watch->status.empty() &&
+                                       run.watch->status.back().state == daemon_status_t::STATE_DEGRADED &&
+                                       run.watch->status.back().last_error.find("not at 115200 baud") != std::string::npos; },
+                          20.0))
+        FAIL("no DEGRADED naming the serial rate" << run.logs());
+    CHECK(run.watch->states.empty());
+    CHECK(run.servo->running());
+
+    // The adapter at 115200 (the right one plugged in): the daemon reopens and enables.
+    run.start_sim({});
+    if (!run.watch->until([&] { return run.operation_enabled(); }, 20.0)) FAIL("never enabled" << run.logs());
+    run.servo->signal(SIGTERM);
+    CHECK(run.servo->wait_exit(5.0) == 0);
+}

@@ -4,7 +4,8 @@
 //   for --loss-duration seconds (its heartbeat stops); SIGHUP puts the adapter's controller
 //   bus-off (BEL, then silence until the host closes and reopens). --fault-after/--loss-after schedule
 //   the same from the time the drive was first enabled. Line faults (serial_line_faults.hpp)
-//   corrupt what the adapter sends; --bus-bitrate and --refuse-tx-every are the adapter's.
+//   corrupt what the adapter sends; --bus-bitrate, --refuse-tx-every and --serial-baud are the
+//   adapter's.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -17,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <string>
 
 #include "drive_emulator.hpp"
@@ -49,6 +51,7 @@ void usage(FILE* out)
                  "                     [--fault-after S] [--loss-after S] [--loss-duration S]\n"
                  "                     [--bit-error-rate P] [--truncate-every N] [--garbage-every S]\n"
                  "                     [--garbage-bytes N] [--seed N] [--bus-bitrate B] [--refuse-tx-every N]\n"
+                 "                     [--serial-baud B]\n"
                  "  A CiA 402 servo drive behind an slcan adapter on a pseudo-terminal (symlink PATH).\n"
                  "  SIGUSR1: raise a fault (EMCY 0x8611). SIGUSR2: drop off the bus for --loss-duration s.\n"
                  "  SIGHUP: the adapter's controller goes bus-off (BEL; silent until closed and reopened).\n"
@@ -56,7 +59,8 @@ void usage(FILE* out)
                  "  --truncate-every N (every N-th frame line cut short before its CR), --garbage-every S\n"
                  "  (--garbage-bytes random bytes between lines every S seconds), --seed N. The adapter:\n"
                  "  --bus-bitrate B (the bus runs at B bit/s: nothing passes unless the host set B),\n"
-                 "  --refuse-tx-every N (every N-th transmit answered BEL).\n");
+                 "  --refuse-tx-every N (every N-th transmit answered BEL), --serial-baud B (its serial side\n"
+                 "  runs at B: a host at another rate is not understood and hears noise).\n");
 }
 
 // Writes what the host will take within ~10 ms; the rest is dropped (returned false), as a
@@ -86,7 +90,7 @@ int servo_main(int argc, char** argv)
     double initial_deg = 0.0, counts_per_rad = 4096.0 * 50.0 / (2.0 * M_PI);
     double fault_after = -1.0, loss_after = -1.0, loss_duration = 1.0;
     double garbage_every_s = 0.0;
-    int bus_bitrate = 0;
+    int bus_bitrate = 0, serial_baud = 0;
     unsigned refuse_tx_every = 0;
     ugv::sim::servo::SerialLineFaultConfig line_faults;
     line_faults.garbage_bytes = 16;
@@ -113,6 +117,7 @@ int servo_main(int argc, char** argv)
         else if (a == "--seed") line_faults.seed = static_cast<unsigned>(std::atoi(value()));
         else if (a == "--bus-bitrate") bus_bitrate = std::atoi(value());
         else if (a == "--refuse-tx-every") refuse_tx_every = static_cast<unsigned>(std::atoi(value()));
+        else if (a == "--serial-baud") serial_baud = std::atoi(value());
         else if (a == "--help" || a == "-h") {
             usage(stdout);
             return 0;
@@ -124,7 +129,7 @@ int servo_main(int argc, char** argv)
     }
     const auto bus_bitrate_command = ugv::io::slcan::encode_bitrate(bus_bitrate);
     if (pty_path.empty() || node < 1 || node > 127 || line_faults.bit_error_rate < 0 ||
-        line_faults.bit_error_rate > 1 || (bus_bitrate != 0 && !bus_bitrate_command)) {
+        line_faults.bit_error_rate > 1 || (bus_bitrate != 0 && !bus_bitrate_command) || serial_baud < 0) {
         usage(stderr);
         return 2;
     }
@@ -153,14 +158,17 @@ int servo_main(int argc, char** argv)
     bool fault_done = false, loss_done = false;
     int faults_seen = 0, losses_seen = 0, bus_offs_seen = 0;
     uint64_t dropped_writes = 0;
+    std::mt19937 noise(line_faults.seed);
     while (!g_stop.load()) {
+        // A host at another serial rate samples the wrong bit cells both ways.
+        const bool rate_matches = serial_baud == 0 || pty.slave_baud() == serial_baud;
         pollfd p{pty.master_fd(), POLLIN, 0};
         const int rc = ::poll(&p, 1, 1);
         const int64_t now = ugv::io::monotonic_us();
         if (rc > 0 && (p.revents & POLLIN)) {
             uint8_t buf[1024];
             const ssize_t n = ::read(pty.master_fd(), buf, sizeof buf);
-            if (n > 0) {
+            if (n > 0 && rate_matches) {
                 for (const auto& f : adapter.feed(buf, static_cast<std::size_t>(n), now)) drive.on_frame(f, now);
             }
         }
@@ -187,7 +195,11 @@ int servo_main(int argc, char** argv)
         for (const auto& f : drive.take_outgoing()) adapter.on_bus_frame(f, now);
         const bool garbage_now = now >= next_garbage_us;
         if (garbage_now) next_garbage_us += static_cast<int64_t>(garbage_every_s * 1e6);
-        const std::string out = serial_line.apply(adapter.take_output(), garbage_now);
+        std::string out = serial_line.apply(adapter.take_output(), garbage_now);
+        if (!rate_matches) {
+            for (auto& c : out) c = static_cast<char>(noise() & 0xFFU);
+            out.resize(out.size() / 2);
+        }
         if (!out.empty() && !write_some(pty.master_fd(), out) && ++dropped_writes % 1000 == 1) {
             std::fprintf(stderr, "ugv-sim servo: the host is not reading; output dropped (%llu times)\n",
                          static_cast<unsigned long long>(dropped_writes));
