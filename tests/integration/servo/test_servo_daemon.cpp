@@ -290,6 +290,13 @@ struct FaultRun
     {
         return !watch->states.empty() && watch->states.back().cia402_state == servo_state_t::STATE_OPERATION_ENABLED;
     }
+    // Waits up to 20 s for a DEGRADED status whose last_error contains `text`.
+    bool degraded_saying(const std::string& text)
+    {
+        return watch->until([&] { return !watch->status.empty() && watch->status.back().state == daemon_status_t::STATE_DEGRADED &&
+                                         watch->status.back().last_error.find(text) != std::string::npos; },
+                            20.0);
+    }
 };
 
 // Every published angle inside the nod (0-20 deg, with the position loop's overshoot) and no
@@ -391,11 +398,7 @@ TEST_CASE("ugv-servo when the adapter refuses transmits with BEL: counted, logge
 TEST_CASE("ugv-servo on a bus at another bitrate: DEGRADED naming the bitrate, nothing published, back when it matches")
 {
     FaultRun run(7857, {"--bus-bitrate", "250000"});
-    if (!run.watch->until([&] { return !run.watch->status.empty() &&
-                                       run.watch->status.back().state == daemon_status_t::STATE_DEGRADED &&
-                                       run.watch->status.back().last_error.find("at 500000 bit/s") != std::string::npos; },
-                          20.0))
-        FAIL("no DEGRADED naming the bitrate" << run.logs());
+    if (!run.degraded_saying("at 500000 bit/s")) FAIL("no DEGRADED naming the bitrate" << run.logs());
     const std::string why = run.watch->status.back().last_error;
     INFO(why);
     CHECK(why.find("nothing received from the bus") != std::string::npos);
@@ -422,11 +425,7 @@ TEST_CASE("ugv-servo with the adapter's serial side at another rate: DEGRADED na
 {
     // The adapter at 57600, the daemon at 115200: neither understands the other.
     FaultRun run(7858, {"--serial-baud", "57600"});
-    if (!run.watch->until([&] { return !run.watch->status.empty() &&
-                                       run.watch->status.back().state == daemon_status_t::STATE_DEGRADED &&
-                                       run.watch->status.back().last_error.find("not at 115200 baud") != std::string::npos; },
-                          20.0))
-        FAIL("no DEGRADED naming the serial rate" << run.logs());
+    if (!run.degraded_saying("not at 115200 baud")) FAIL("no DEGRADED naming the serial rate" << run.logs());
     CHECK(run.watch->states.empty());
     CHECK(run.servo->running());
 
