@@ -416,3 +416,16 @@ TEST_CASE("ugv-imu and a unit on another baud rate: DEGRADED naming the rate, no
     CHECK(count_not_emulators(listen.got().imu) == 0);
     run.stop();
 }
+
+TEST_CASE("ugv-imu when the unit's first 4 handshake replies come cut short: retried, then streaming", "[imu][integration]")
+{
+    ImuRun run(7817, {"--truncate-replies", "4"});
+    Listener& listen = *run.listen;
+    INFO(run.daemon->err());
+    REQUIRE(listen.until([&] { return listen.got().imu.size() >= 100; }, 60.0));
+    CHECK(run.next_status().state == ugv::daemon_status_t::STATE_RUNNING);
+    CHECK(listen.counter("checksum_errors") + listen.counter("handshake_failures") > 0);
+    CHECK(count_not_emulators(listen.got().imu) == 0);
+    CHECK(tick_steps(listen.got().imu).irregular == 0);
+    run.stop();
+}

@@ -130,6 +130,17 @@ void Gx1Emulator::send(const std::vector<uint8_t>& bytes)
     if (!silent_) out_.insert(out_.end(), bytes.begin(), bytes.end());
 }
 
+void Gx1Emulator::send_reply(std::vector<uint8_t> bytes)
+{
+    if (truncate_replies_ > 0 && bytes.size() > 1) {
+        --truncate_replies_;
+        std::uniform_int_distribution<std::size_t> keep(1, bytes.size() - 1);
+        bytes.resize(keep(rng_));
+        ++counters_.replies_truncated;
+    }
+    send(bytes);
+}
+
 void Gx1Emulator::inject_garbage(std::size_t n)
 {
     static constexpr uint8_t likely[] = {cmd::stab_euler_accel_rate, cmd::continuous, cmd::stab_quaternion_vectors,
@@ -261,7 +272,7 @@ void Gx1Emulator::execute(const std::vector<uint8_t>& c, double t_s)
     auto arg16 = [&](std::size_t i) { return static_cast<uint16_t>(c[i] << 8 | c[i + 1]); };
     ++counters_.commands;
     if (is_data_command(command)) {
-        send(data_reply(command, t_s));
+        send_reply(data_reply(command, t_s));
         return;
     }
     switch (command) {
@@ -273,34 +284,34 @@ void Gx1Emulator::execute(const std::vector<uint8_t>& c, double t_s)
         } else {
             return;  // not a streamable command: no answer
         }
-        send(gx1::encode_reply(cmd::continuous, {static_cast<uint16_t>(c[1] << 8 | c[2]), ticks}));
+        send_reply(gx1::encode_reply(cmd::continuous, {static_cast<uint16_t>(c[1] << 8 | c[2]), ticks}));
         return;
     case cmd::tare:
     case cmd::remove_tare:
         // Acknowledged only with the confirmation bytes; the reference frame is not changed.
-        if (c[1] == 0xC1 && c[2] == 0xC3 && c[3] == 0xC5) send(gx1::encode_reply(command, {ticks}));
+        if (c[1] == 0xC1 && c[2] == 0xC3 && c[3] == 0xC5) send_reply(gx1::encode_reply(command, {ticks}));
         return;
-    case cmd::capture_gyro_bias: send(gx1::encode_reply(command, {ticks})); return;
+    case cmd::capture_gyro_bias: send_reply(gx1::encode_reply(command, {ticks})); return;
     case cmd::temperature: {
         const double raw = (config_.temperature_c / 100.0 + 0.5) * 65536.0 / 5.0;
-        send(gx1::encode_reply(command, {static_cast<uint16_t>(std::lround(raw)), ticks}));
+        send_reply(gx1::encode_reply(command, {static_cast<uint16_t>(std::lround(raw)), ticks}));
         return;
     }
     case cmd::write_gains:
         system_gains_ = {arg16(1), arg16(3), arg16(5)};
-        send(gx1::encode_reply(command, {ticks}));
+        send_reply(gx1::encode_reply(command, {ticks}));
         return;
     case cmd::read_gains:
-        send(gx1::encode_reply(command, {system_gains_[0], system_gains_[1], system_gains_[2], ticks}));
+        send_reply(gx1::encode_reply(command, {system_gains_[0], system_gains_[1], system_gains_[2], ticks}));
         return;
-    case cmd::read_eeprom: send(gx1::encode_reply(command, {eeprom(arg16(1)), ticks})); return;
+    case cmd::read_eeprom: send_reply(gx1::encode_reply(command, {eeprom(arg16(1)), ticks})); return;
     case cmd::write_eeprom:
         if (c[1] != 0x71 || c[6] != 0xAA) return;  // wrong confirmation bytes: ignored
         eeprom_[arg16(2)] = arg16(4);
-        send(gx1::encode_reply(command, {arg16(4), ticks}));
+        send_reply(gx1::encode_reply(command, {arg16(4), ticks}));
         return;
-    case cmd::firmware_version: send(gx1::encode_reply(command, {config_.firmware_version})); return;
-    case cmd::serial_number: send(gx1::encode_reply(command, {config_.serial_number})); return;
+    case cmd::firmware_version: send_reply(gx1::encode_reply(command, {config_.firmware_version})); return;
+    case cmd::serial_number: send_reply(gx1::encode_reply(command, {config_.serial_number})); return;
     default: return;
     }
 }

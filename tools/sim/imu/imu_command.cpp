@@ -45,6 +45,7 @@ struct Faults
     double gone_for_s = 0;         // 0 = stay gone (exit)
     double bit_error_rate = 0;     // per byte sent: one random bit flipped
     unsigned truncate_every = 0;   // every n-th streamed frame cut short (0 = never)
+    unsigned truncate_replies = 0; // the first n command replies cut short
 };
 
 std::vector<uint16_t> parse_words(const std::string& text)
@@ -95,6 +96,8 @@ int imu_main(int argc, char** argv)
     app.add_option("--bit-error-rate", faults.bit_error_rate, "per byte sent, flip one random bit with this probability")
         ->check(CLI::Range(0.0, 1.0));
     app.add_option("--truncate-every", faults.truncate_every, "cut every N-th streamed frame short (0 = never)");
+    app.add_option("--truncate-replies", faults.truncate_replies,
+                   "cut the first N replies to commands short (the host's handshake must retry)");
     app.add_option("--duration", duration_s, "exit after S seconds (0 = run until SIGTERM)");
     try {
         app.parse(argc, argv);
@@ -127,6 +130,7 @@ int imu_main(int argc, char** argv)
     const double start_s = now_s();
     auto emu = std::make_unique<Gx1Emulator>(cfg, start_s);
     emu->set_truncate_every(faults.truncate_every);
+    emu->set_truncate_replies(faults.truncate_replies);
     std::mt19937 line_rng(cfg.noise.seed + 2);  // bit errors on the line
     uint64_t bytes_damaged = 0;
     std::mt19937 split_rng(cfg.noise.seed + 1);
@@ -206,9 +210,10 @@ int imu_main(int argc, char** argv)
             tx_free_s += static_cast<double>(w) * byte_s;
         }
     }
-    std::fprintf(stderr, "%s: frames streamed %llu, truncated %llu; bytes with a bit flipped %llu\n", argv[0],
-                 static_cast<unsigned long long>(emu->counters().frames_streamed),
+    std::fprintf(stderr, "%s: frames streamed %llu, truncated %llu; replies truncated %llu; bytes with a bit flipped %llu\n",
+                 argv[0], static_cast<unsigned long long>(emu->counters().frames_streamed),
                  static_cast<unsigned long long>(emu->counters().frames_truncated),
+                 static_cast<unsigned long long>(emu->counters().replies_truncated),
                  static_cast<unsigned long long>(bytes_damaged));
     return 0;
 }

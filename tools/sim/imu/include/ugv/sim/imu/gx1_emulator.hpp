@@ -70,6 +70,7 @@ struct EmulatorCounters
     uint64_t ignored_bytes = 0;  // bytes that start no command
     uint64_t frames_streamed = 0;
     uint64_t frames_truncated = 0;  // streamed frames cut short (set_truncate_every)
+    uint64_t replies_truncated = 0;  // command replies cut short (set_truncate_replies)
 };
 
 class Gx1Emulator
@@ -92,6 +93,8 @@ public:
     // Every n-th streamed frame goes out cut short: only its first k bytes (k random in
     // 1 .. length-1), then the next frame follows as usual. 0 = never.
     void set_truncate_every(unsigned n) { truncate_every_ = n; }
+    // The next n replies to commands (the handshake's) go out cut short the same way.
+    void set_truncate_replies(unsigned n) { truncate_replies_ = n; }
 
     bool streaming() const { return streaming_; }
     uint8_t streamed_command() const { return stream_command_; }
@@ -105,6 +108,7 @@ public:
 private:
     void execute(const std::vector<uint8_t>& command, double t_s);
     void send(const std::vector<uint8_t>& bytes);
+    void send_reply(std::vector<uint8_t> bytes);  // send(), unless set_truncate_replies cuts it
     void start_stream(uint8_t command, double t_s);
     int64_t device_ticks_at(double t_s) const;  // unwrapped
     std::vector<uint8_t> build_data_reply(uint8_t command, double t_s, uint16_t ticks);
@@ -120,6 +124,7 @@ private:
     bool streaming_ = false;
     bool silent_ = false;
     unsigned truncate_every_ = 0;
+    unsigned truncate_replies_ = 0;
     uint8_t stream_command_ = 0;
     int64_t next_tick_ = 0;
     int64_t period_ticks_ = 1;
