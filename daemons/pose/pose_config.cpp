@@ -66,7 +66,10 @@ PoseConfig read_config(runtime::Config& cfg)
 
     const double rate_hz = cfg.get_double("rate_hz", 10.0, 0.1, 100.0);
     e.output_period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
-    e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.15, 0.0, 2.0));
+    // The window must hold the oldest input on arrival: a NovAtel velocity is stamped its
+    // latency (0.15 s) before the epoch and reaches the host after BESTPOS and BESTVEL have
+    // crossed the line (0.19 s at 9600 baud). At 0.15 s ugv-pose dropped them as late.
+    e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.4, 0.0, 2.0));
 
     c.gps_fix_channel = cfg.get_string("gps_fix_channel", c.gps_fix_channel);
     c.gps_velocity_channel = cfg.get_string("gps_velocity_channel", c.gps_velocity_channel);

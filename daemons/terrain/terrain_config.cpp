@@ -12,7 +12,7 @@ TerrainDaemonConfig read_config(runtime::Config& cfg)
     c.pose_channel = cfg.get_string("pose_channel", c.pose_channel);
     c.map_channel = cfg.get_string("map_channel", c.map_channel);
     c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
-    c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 0.5, 0.0, 5.0) * 1e6));
+    c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 1.0, 0.0, 5.0) * 1e6));
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));
 
     terrain::MapConfig& m = c.map;
