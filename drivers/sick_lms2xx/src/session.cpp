@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "ugv/sick_lms2xx/requests.hpp"
 #include "ugv/sick_lms2xx/timing.hpp"
@@ -135,24 +136,26 @@ void Session::on_event(const DecoderEvent& ev)
     }
 }
 
+uint64_t Session::rejected_telegrams() const
+{
+    const DecoderStats& ds = decoder_.stats();
+    return ds.crc_errors + ds.length_errors + static_cast<uint64_t>(stats_.bad_scans.load());
+}
+
 void Session::handle_scan(const Telegram& t)
 {
     if (decode_scan(t, scan_.scan) != ScanError::none ||
         scan_.scan.ranges_m.size() != static_cast<std::size_t>(expected_beams_)) {
         ++stats_.bad_scans;
-        ++scans_rejected_since_last_;
         return;
     }
     const double period = scan_period_s(config_.resolution_cdeg);
     // The bytes read after this telegram in the same chunk came after its last byte.
     const int64_t last_byte_utime =
         chunk_utime_ - std::llround(line_time_s(decoder_.buffered(), device_baud_) * 1e6);
-    const DecoderStats& ds = decoder_.stats();
-    const uint64_t rejected = ds.crc_errors + ds.length_errors;
-    scans_rejected_since_last_ += static_cast<int>(std::min<uint64_t>(rejected - rejected_frames_at_last_scan_, 1000));
-    rejected_frames_at_last_scan_ = rejected;
-    const int64_t arrival = scan_clock_.update(last_byte_utime, scans_rejected_since_last_);
-    scans_rejected_since_last_ = 0;
+    const uint64_t rejected = rejected_telegrams();
+    const int lost = static_cast<int>(std::min<uint64_t>(rejected - std::exchange(rejected_at_last_scan_, rejected), 1000));
+    const int64_t arrival = scan_clock_.update(last_byte_utime, lost);
     stats_.clock_restarts = static_cast<int64_t>(scan_clock_.restarts());
     const ScanStamp stamp = stamp_scan(arrival, t.raw.size(), device_baud_, period, expected_beams_);
     scan_.arrival_utime = last_byte_utime;
@@ -311,8 +314,7 @@ bool Session::initialise()
     const double telegram_s = line_time_s(2 * static_cast<std::size_t>(expected_beams_) + 10, device_baud_);
     const int scans_per_telegram = std::max(1, static_cast<int>(std::ceil(telegram_s / period_s - 1e-9)));
     scan_clock_ = io::PeriodicClock(period_s, scans_per_telegram, scan_clock_.restarts());
-    rejected_frames_at_last_scan_ = decoder_.stats().crc_errors + decoder_.stats().length_errors;
-    scans_rejected_since_last_ = 0;
+    rejected_at_last_scan_ = rejected_telegrams();
     streaming_ = true;
     last_scan_us_ = now_us();
     error_.clear();

@@ -137,8 +137,9 @@ private:
     // Calls the channel's handlers; false when nobody subscribed to it (most datagrams).
     bool dispatch(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)
     {
-        if (route(channel).empty()) return false;
-        const std::vector<Sub*> to = route(channel_);  // a copy: a handler may subscribe
+        const std::vector<Sub*>& routed = route(channel);
+        if (routed.empty()) return false;
+        const std::vector<Sub*> to = routed;  // a copy: a handler may subscribe
         const std::string name = channel_;
         ++counters_.received;
         for (Sub* s : to) detail::call_guarded(s->handler, counters_, name, data, size, recv_utime);

@@ -8,6 +8,7 @@
 
 #include "ugv/microstrain_gx1/orientation.hpp"
 #include "ugv/microstrain_gx1/protocol.hpp"
+#include "ugv/sim/line_faults.hpp"
 
 namespace ugv::sim::imu {
 
@@ -134,8 +135,7 @@ void Gx1Emulator::send_reply(std::vector<uint8_t> bytes)
 {
     if (truncate_replies_ > 0 && bytes.size() > 1) {
         --truncate_replies_;
-        std::uniform_int_distribution<std::size_t> keep(1, bytes.size() - 1);
-        bytes.resize(keep(rng_));
+        bytes.resize(sim::cut_length(bytes.size(), rng_));
         ++counters_.replies_truncated;
     }
     send(bytes);
@@ -166,7 +166,7 @@ void Gx1Emulator::advance(double t_s)
         if (!silent_) {
             ++counters_.frames_streamed;
             if (truncate_every_ > 0 && counters_.frames_streamed % truncate_every_ == 0 && frame.size() > 1) {
-                frame.resize(std::uniform_int_distribution<std::size_t>(1, frame.size() - 1)(rng_));
+                frame.resize(sim::cut_length(frame.size(), rng_));
                 ++counters_.frames_truncated;
             }
         }

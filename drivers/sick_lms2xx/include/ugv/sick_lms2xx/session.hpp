@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "ugv/io/byte_stream.hpp"
-#include "ugv/sick_lms2xx/decoder.hpp"
 #include "ugv/io/periodic_clock.hpp"
+#include "ugv/sick_lms2xx/decoder.hpp"
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/scan.hpp"
 
@@ -122,6 +122,8 @@ private:
     void on_event(const DecoderEvent& ev);
     void handle_scan(const Telegram& t);
     void sync_decoder_stats();
+    // Telegrams that never became a scan: CRC and length errors, and undecodable scans.
+    uint64_t rejected_telegrams() const;
     bool write(const std::vector<uint8_t>& bytes);
     // Sends request and waits for ACK + the reply with reply_cmd; reply_ holds its data.
     bool transact(const std::vector<uint8_t>& request, uint8_t reply_cmd, int attempts, const char* what);
@@ -149,8 +151,7 @@ private:
     std::vector<uint8_t> reply_;  // data of the awaited reply (after CMD, without STATUS)
     int64_t chunk_utime_ = 0;
     io::PeriodicClock scan_clock_{0.0};  // set up for the configured resolution when streaming starts
-    uint64_t rejected_frames_at_last_scan_ = 0;  // decoder CRC + length errors then
-    int scans_rejected_since_last_ = 0;
+    uint64_t rejected_at_last_scan_ = 0;  // rejected_telegrams() at the last good scan
     StampedScan scan_;
     std::vector<uint8_t> rx_;
 };

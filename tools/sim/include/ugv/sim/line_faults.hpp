@@ -1,4 +1,4 @@
-// Line faults shared by the serial-device emulators (ugv-sim lms, ugv-sim gps): what a noisy
+// Line faults shared by the serial-device emulators (ugv-sim lms, gps, imu): what a noisy
 // or interrupted serial line does to the bytes a device sends. Pure functions of a seeded
 // generator, so a fault plan with a given seed damages the same bytes every run.
 #pragma once
@@ -29,15 +29,20 @@ std::size_t flip_bits(It first, It last, double rate, std::mt19937& rng)
     return damaged;
 }
 
-// With probability p, the length a frame of `size` bytes is cut to: its first k bytes,
-// k uniform in [1, size - 1] (the rest never leaves the device). Otherwise size.
+// The length a frame of `size` (>= 2) bytes is cut to: its first k bytes, k uniform in
+// [1, size - 1] (the rest never leaves the device).
+inline std::size_t cut_length(std::size_t size, std::mt19937& rng)
+{
+    return std::uniform_int_distribution<std::size_t>(1, size - 1)(rng);
+}
+
+// With probability p, cut_length(size); otherwise size.
 inline std::size_t truncated_length(std::size_t size, double p, std::mt19937& rng)
 {
     if (p <= 0.0 || size < 2) return size;
     std::uniform_real_distribution<double> u(0.0, 1.0);
     if (u(rng) >= p) return size;
-    std::uniform_int_distribution<std::size_t> keep(1, size - 1);
-    return keep(rng);
+    return cut_length(size, rng);
 }
 
 }  // namespace ugv::sim
