@@ -12,6 +12,8 @@ namespace {
 
 // Receive errors in a row, without a frame between, after which the transport is reopened.
 constexpr int kRxErrorsBeforeReopen = 50;
+// TPDO periods per wake window: a few prompt TPDO1s per window, in case one is delayed.
+constexpr int kWakeWindowPeriods = 5;
 
 nodscan::NodCommand from_message(const servo_command_t& m, double scan_period_s)
 {
@@ -75,18 +77,36 @@ void ServoApp::open_transport()
     rx_errors_in_a_row_ = 0;
     if (ever_opened_) ++reconnects_;
     ever_opened_ = true;
-    registered_fd_ = transport_->fd();
-    d_.add_fd(registered_fd_, [this] { drain_transport(); });
+    watch_fd(true);
     spdlog::info("{} open at {} bit/s; configuring node {}", transport_->describe(), config_.bitrate,
                  int{config_.drive.node_id});
     drive_.start(io::monotonic_us());
     flush_outgoing();
 }
 
+void ServoApp::watch_fd(bool on)
+{
+    if (on && registered_fd_ < 0 && transport_open_) {
+        registered_fd_ = transport_->fd();
+        d_.add_fd(registered_fd_, [this] { drain_transport(true); });
+    } else if (!on && registered_fd_ >= 0) {
+        d_.remove_fd(registered_fd_);
+        registered_fd_ = -1;
+    }
+}
+
+bool ServoApp::want_frame_wakeups(int64_t now_us) const
+{
+    if (!drive_.operational()) return true;  // configuring, enabling: SDO answers at once
+    if (transport_->stamps_arrival()) return false;
+    if (config_.frame_wakeup_period_us == 0 || config_.drive.sync_period_us > 0) return true;
+    const int64_t window_us = int64_t{kWakeWindowPeriods} * config_.drive.tpdo_period_ms * 1000;
+    return now_us % config_.frame_wakeup_period_us < window_us;
+}
+
 void ServoApp::close_transport(const std::string& why)
 {
-    if (registered_fd_ >= 0) d_.remove_fd(registered_fd_);
-    registered_fd_ = -1;
+    watch_fd(false);
     transport_->close();
     transport_open_ = false;
     was_operational_ = false;
@@ -104,14 +124,15 @@ void ServoApp::reinitialise(const std::string& why)
     retry_at_us_ = io::monotonic_us() + backoff_.next();
 }
 
-void ServoApp::drain_transport()
+void ServoApp::drain_transport(bool prompt)
 {
+    const bool read_late = !prompt && !transport_->stamps_arrival();
     for (int guard = 0; guard < 1000 && transport_open_; ++guard) {
         const io::CanReceive r = transport_->receive(0);
         if (r.status == io::CanReceive::Status::timeout) break;
         if (r.status == io::CanReceive::Status::frame) {
             rx_errors_in_a_row_ = 0;
-            drive_.on_frame(r.frame, io::monotonic_us(), r.utime);
+            drive_.on_frame(r.frame, io::monotonic_us(), r.utime, read_late);
             continue;
         }
         if (r.status == io::CanReceive::Status::error && ++rx_errors_in_a_row_ < kRxErrorsBeforeReopen) {
@@ -146,7 +167,9 @@ void ServoApp::control_tick()
         sync_counters();
         return;
     }
-    drain_transport();  // the slcan transport may hold decoded frames the fd does not show
+    // The bus between wake windows (and the slcan transport may hold decoded frames the fd
+    // does not show).
+    drain_transport(false);
     if (!transport_open_) return;
     drive_.tick(now);
     const auto phase = drive_.phase();
@@ -189,6 +212,7 @@ void ServoApp::control_tick()
     publish_samples();
     log_events();
     sync_counters();
+    watch_fd(transport_open_ && want_frame_wakeups(now));
 }
 
 void ServoApp::flush_outgoing()

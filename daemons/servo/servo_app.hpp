@@ -2,6 +2,15 @@
 // SERVO_STATE and the status counters out. Runs on the daemon's main loop (the transport's
 // fd plus a control timer); a failed drive session or transport is re-initialised with
 // back-off while the daemon reports DEGRADED.
+//
+// Wake-ups: an slcan adapter delivers each TPDO as its own serial line, and waking the loop
+// for each (~200/s) was most of this daemon's CPU. Once the drive runs, the control tick
+// reads the bus, and the fd is watched only during a window of kWakeWindowPeriods TPDO
+// periods every frame_wakeup_period_ms: those frames are read as they arrive and fit the
+// TPDO clock; the others were found by the tick some unknown time after they arrived and
+// are stamped on that clock (canopen::Drive::on_frame's read_late). A transport that stamps
+// the arrival itself (SocketCAN) needs no window; before the drive runs, and with SYNC, the
+// fd is always watched.
 #pragma once
 
 #include <cstdint>
@@ -30,8 +39,11 @@ public:
 private:
     void open_transport();
     void close_transport(const std::string& why);
-    void drain_transport();
+    // prompt: called because the fd became readable (the frames arrived just now).
+    void drain_transport(bool prompt);
     void control_tick();
+    bool want_frame_wakeups(int64_t now_us) const;
+    void watch_fd(bool on);
     void flush_outgoing();
     void publish_samples();
     void log_events();

@@ -67,6 +67,11 @@ ServoConfig read_config(runtime::Config& cfg)
     if (auto why = nodscan::validate(n, c.nod.hard_limits)) p.fail("kind", *why);
 
     c.control_period_us = cfg.get_int("control_period_ms", 10, 1, 50) * 1000;
+    // The TPDO clock fits the least delayed arrival of each half second (io::PeriodicClock):
+    // every half second at the latest there must be prompt reads.
+    c.frame_wakeup_period_us = cfg.get_int("frame_wakeup_period_ms", 500, 0, 500) * 1000;
+    if (c.frame_wakeup_period_us > 0 && c.frame_wakeup_period_us < 100'000)
+        cfg.fail("frame_wakeup_period_ms", "must be 0 (wake for every frame) or 100..500");
     return c;
 }
 

@@ -281,7 +281,7 @@ void Drive::on_tpdo1(uint16_t statusword, int32_t counts, int64_t now_us, int64_
     samples_.push_back(s);
 }
 
-void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime)
+void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime, bool read_late)
 {
     ++frames_since_start_;
     if (frame.extended || frame.rtr) return;
@@ -317,7 +317,8 @@ void Drive::on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime)
     if (auto v = unpack_pdo(tpdo1_, node_, frame)) {
         // With SYNC the host's own SYNC times the sample: the receive time is kept.
         if (config_.sync_period_us == 0) {
-            utime = tpdo1_clock_.update(utime, std::exchange(lost_frames_, 0));
+            const int lost = std::exchange(lost_frames_, 0);
+            utime = read_late ? tpdo1_clock_.update_read_late(utime, lost) : tpdo1_clock_.update(utime, lost);
             counters_.clock_restarts = tpdo1_clock_.restarts();
         }
         const auto statusword = static_cast<uint16_t>((*v)[0]);

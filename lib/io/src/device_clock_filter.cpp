@@ -80,4 +80,12 @@ int64_t DeviceClockFilter::update(double device_s, int64_t arrival_utime)
     return host0_us_ + static_cast<int64_t>(std::llround((x + y_hat) * 1e6));
 }
 
+int64_t DeviceClockFilter::predict(double device_s, int64_t read_utime) const
+{
+    if (!started_) return read_utime;
+    const double x = device_s - device0_s_;
+    const auto line_us = host0_us_ + static_cast<int64_t>(std::llround((x + offset_ + drift_ * x) * 1e6));
+    return std::min(line_us, read_utime);
+}
+
 }  // namespace ugv::io

@@ -51,4 +51,11 @@ int64_t PeriodicClock::update(int64_t arrival_utime, int lost_since_last)
     return stamp;
 }
 
+int64_t PeriodicClock::update_read_late(int64_t read_utime, int lost_since_last)
+{
+    if (!started_) return update(read_utime, lost_since_last);
+    count_ += int64_t{periods_per_message_} * (1 + std::max(0, lost_since_last));
+    return filter_.predict(static_cast<double>(count_) * period_s_, read_utime);
+}
+
 }  // namespace ugv::io

@@ -18,6 +18,7 @@ public:
     bool send(const CanFrame& frame) override;
     CanReceive receive(int timeout_ms) override;
     int fd() const override { return port_.fd(); }
+    bool stamps_arrival() const override { return false; }
     std::string describe() const override;
     const std::string& last_error() const override { return error_; }
 

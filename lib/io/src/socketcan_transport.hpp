@@ -16,6 +16,7 @@ public:
     bool send(const CanFrame& frame) override;
     CanReceive receive(int timeout_ms) override;
     int fd() const override { return fd_; }
+    bool stamps_arrival() const override { return true; }
     std::string describe() const override { return "socketcan:" + interface_; }
     const std::string& last_error() const override { return error_; }
 

@@ -359,3 +359,38 @@ TEST_CASE("Drive without the plausibility check takes every TPDO as it comes (CA
     CHECK(s[0].counts == 1000 + 0x10000);
     CHECK(d.counters().tpdo_implausible == 0);
 }
+
+TEST_CASE("Drive: TPDO1s read late on a timer keep the event timer's grid when the caller says so")
+{
+    for (const bool say_late : {true, false}) {
+        Drive d(test_config());
+        int64_t now = 1'000'000;
+        bring_up(d, now, 100);
+        d.take_samples();
+        // 1 s of TPDO1s read as they arrive (0.2 ms after the drive sent them), then 3.5 s
+        // read 6 ms late by a 10 ms tick except 5 of every 50 (ugv-servo's wake windows).
+        const int64_t t0 = now;
+        std::vector<int64_t> errors;
+        for (int k = 0; k < 450; ++k) {
+            const int64_t truth = t0 + int64_t{k} * 10'000;
+            const bool late = k >= 100 && k % 50 >= 5;
+            const int64_t read = truth + (late ? 6'000 : 200);
+            d.on_frame(frame(tpdo1(0x0237, 100 + k)), read, read, late && say_late);
+            d.on_frame(frame("702#05"), read, read);
+            for (const auto& s : d.take_samples())
+                if (k >= 20) errors.push_back(s.utime - truth);
+        }
+        const auto worst = *std::max_element(errors.begin(), errors.end(),
+                                             [](int64_t a, int64_t b) { return std::llabs(a) < std::llabs(b); });
+        INFO((say_late ? "read_late" : "taken as arrivals") << ": worst stamp error " << worst << " us, restarts "
+                                                            << d.counters().clock_restarts);
+        if (say_late) {
+            CHECK(std::llabs(worst) <= 500);  // the line through 0.2 ms-late prompt reads
+            CHECK(d.counters().clock_restarts == 0);
+        } else {
+            // Every late read half a period after the line: taken as a count that slipped.
+            CHECK(d.counters().clock_restarts > 0);
+            CHECK(std::llabs(worst) >= 5'000);
+        }
+    }
+}

@@ -132,3 +132,81 @@ TEST_CASE("A line too slow for every scan: every n-th scan, on the grid")
     }
     CHECK(clock.restarts() == 0);
 }
+
+namespace {
+
+// A drive's 100 Hz event-timer TPDOs, 20 ppm off the host's clock, read the way ugv-servo
+// reads an slcan adapter once the drive is running: on its own 10 ms control tick (so a
+// frame waits in the port's buffer for a fixed phase of that tick), except during a 50 ms
+// window every 500 ms in which it wakes for each frame (0.1..0.6 ms after it arrived).
+struct LateReads
+{
+    std::vector<double> errors_us;  // stamp - truth, after the first 2 s
+    uint64_t restarts = 0;
+};
+
+LateReads read_on_tick(double tick_phase_ms, bool late_reads_fitted, int vanish_at = -1)
+{
+    constexpr double kTpdoPeriodS = 0.010;
+    const double period_us = kTpdoPeriodS * 1e6 * (1.0 + 2e-5);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> prompt_us(100.0, 600.0);
+    PeriodicClock clock(kTpdoPeriodS);
+    LateReads r;
+    for (int k = 0; k < 6000; ++k) {
+        if (k == vanish_at) continue;  // lost without the decoder seeing anything
+        const double truth_us = static_cast<double>(kHostStartUs) + k * period_us;
+        const double host_ms = (truth_us - static_cast<double>(kHostStartUs)) * 1e-3;
+        const bool in_window = std::fmod(host_ms, 500.0) < 50.0;
+        int64_t stamp = 0;
+        if (in_window || k < 10) {
+            stamp = clock.update(std::llround(truth_us + prompt_us(rng)));
+        } else {
+            // The next control tick: ticks at tick_phase_ms + 10 ms * n of the host clock.
+            const double wait_ms = std::fmod(tick_phase_ms - std::fmod(host_ms, 10.0) + 10.0, 10.0);
+            const auto read = std::llround(truth_us + wait_ms * 1e3);
+            stamp = late_reads_fitted ? clock.update(read) : clock.update_read_late(read);
+            CHECK(stamp <= read);
+        }
+        if (k >= 200) r.errors_us.push_back(static_cast<double>(stamp) - truth_us);
+    }
+    r.restarts = clock.restarts();
+    return r;
+}
+
+double max_abs(const std::vector<double>& v)
+{
+    double m = 0;
+    for (double e : v) m = std::max(m, std::abs(e));
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("Frames read late on a timer are stamped on the line the promptly read ones fit")
+{
+    for (double phase_ms : {0.5, 3.0, 7.0, 9.5}) {
+        const LateReads good = read_on_tick(phase_ms, false);
+        INFO("tick phase " << phase_ms << " ms: max |error| " << max_abs(good.errors_us) << " us, restarts "
+                           << good.restarts);
+        CHECK(max_abs(good.errors_us) < 800);
+        CHECK(good.restarts == 0);
+    }
+    // The same reads taken as arrivals: the line follows the read times, late by the phase
+    // (and past half a period the clock restarts over and over).
+    const LateReads fitted = read_on_tick(7.0, true);
+    double mean = 0;
+    for (double e : fitted.errors_us) mean += e;
+    mean /= static_cast<double>(fitted.errors_us.size());
+    INFO("read times fitted: mean error " << mean << " us, restarts " << fitted.restarts);
+    CHECK((mean > 2'000 || fitted.restarts > 10));
+}
+
+TEST_CASE("A frame that vanished while reads were late is found out by the next prompt window")
+{
+    const LateReads r = read_on_tick(4.0, false, 3010);  // 30.1 s in, between two windows
+    CHECK(r.restarts == 1);
+    // Stamps after the restart (two windows later at most) are back on the grid.
+    std::vector<double> last(r.errors_us.end() - 1000, r.errors_us.end());
+    CHECK(max_abs(last) < 800);
+}

@@ -103,8 +103,11 @@ public:
 
     // utime: the frame's receive time. Without SYNC a TPDO1's sample is stamped on the
     // drive's own event-timer cadence (io::PeriodicClock), so TPDOs read together after a
-    // host stall keep their own times.
-    void on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime);
+    // host stall keep their own times. read_late: utime is only when a batched read found
+    // the frame (io::PeriodicClock::update_read_late), not when it arrived; the caller still
+    // reads some TPDO1s promptly (see ugv-servo's wake windows). Ignored with SYNC, whose
+    // callers must read promptly.
+    void on_frame(const io::CanFrame& frame, int64_t now_us, int64_t utime, bool read_late = false);
     // A frame was lost on the way (a malformed slcan line): it may have been a TPDO1.
     void note_lost_frame() { ++lost_frames_; }
     void tick(int64_t now_us);

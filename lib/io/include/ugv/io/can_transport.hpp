@@ -32,6 +32,10 @@ public:
     virtual CanReceive receive(int timeout_ms) = 0;
     // For poll(): readable when a frame may be waiting. -1 when closed.
     virtual int fd() const = 0;
+    // True when CanReceive::utime is when the frame arrived however late it is read (the
+    // kernel's SO_TIMESTAMP); false when it is the time of the read that found it (slcan:
+    // bytes on a serial port carry no time).
+    virtual bool stamps_arrival() const = 0;
     virtual std::string describe() const = 0;
     virtual const std::string& last_error() const = 0;
 };

@@ -36,6 +36,10 @@ public:
     // device_s: unwrapped device time (ticks * tick period); arrival_utime: host time of the
     // frame's first byte (us since the epoch). Returns the filtered host time of the sample.
     int64_t update(double device_s, int64_t arrival_utime);
+    // The model's host time of a sample whose arrival time is not known, only a time after
+    // it (read_utime: the sample sat in a buffer until a batched read took it). Changes
+    // nothing; no later than read_utime. Before the first update(): read_utime.
+    int64_t predict(double device_s, int64_t read_utime) const;
     void reset();
 
     double drift() const { return drift_; }         // host seconds per device second - 1

@@ -40,6 +40,14 @@ public:
     // lost since the last one (a decoder's CRC errors). Returns the filtered time of that
     // arrival: no later than arrival_utime.
     int64_t update(int64_t arrival_utime, int lost_since_last = 0);
+    // The same for a message read some unknown time after it arrived (read_utime: a batched
+    // read on a timer found it waiting in the port's buffer): it is counted, and stamped on
+    // the line fitted to the promptly read ones, no later than read_utime. Its read time
+    // moves neither the line nor the slip detection, which see only update()'s arrivals: a
+    // caller that reads late must still read some messages promptly, at least a few per
+    // half-second block (ugv-servo's wake windows). The first message of a stream is taken
+    // as update() takes it.
+    int64_t update_read_late(int64_t read_utime, int lost_since_last = 0);
     void reset();
     uint64_t restarts() const { return slips_ + filter_.restarts(); }
 
