@@ -11,7 +11,7 @@ using namespace ugv;
 
 int main(int argc, char** argv)
 {
-    daemon::Daemon d({.name = "ugv-nodscan", .status_channel = "STATUS_NODSCAN", .processing = true, .bus_batch_ms = 10}, argc, argv);
+    daemon::Daemon d({.name = "ugv-nodscan", .status_channel = "STATUS_NODSCAN", .processing = true, .bus_batch_ms = 50}, argc, argv);
     const nodscan_daemon::NodscanConfig cfg = nodscan_daemon::read_config(d.config());
     d.start();
 

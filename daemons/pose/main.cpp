@@ -12,7 +12,7 @@ using namespace ugv;
 
 int main(int argc, char** argv)
 {
-    daemon::Daemon d({.name = "ugv-pose", .status_channel = "STATUS_POSE", .processing = true, .bus_batch_ms = 10}, argc, argv);
+    daemon::Daemon d({.name = "ugv-pose", .status_channel = "STATUS_POSE", .processing = true, .bus_batch_ms = 50}, argc, argv);
     const pose_daemon::PoseConfig cfg = pose_daemon::read_config(d.config());
     d.start();
 

@@ -12,7 +12,7 @@ using namespace ugv;
 
 int main(int argc, char** argv)
 {
-    daemon::Daemon d({.name = "ugv-terrain", .status_channel = "STATUS_TERRAIN", .processing = true, .bus_batch_ms = 10}, argc, argv);
+    daemon::Daemon d({.name = "ugv-terrain", .status_channel = "STATUS_TERRAIN", .processing = true, .bus_batch_ms = 50}, argc, argv);
     const terrain_daemon::TerrainDaemonConfig cfg = terrain_daemon::read_config(d.config());
     d.start();
     d.set_health_timeout_us(cfg.health_timeout_us);
