@@ -9,6 +9,7 @@
 
 #include "imu_message.hpp"
 #include "tap_stream.hpp"
+#include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/serial_port.hpp"
 #include "ugv/runtime/backoff.hpp"
@@ -18,8 +19,11 @@ namespace ugv::imu_daemon {
 
 namespace gx1 = ugv::microstrain_gx1;
 
-DeviceLoop::DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config, Outbox& outbox)
-    : d_(daemon), config_(config), outbox_(outbox)
+DeviceLoop::DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config)
+    : d_(daemon),
+      config_(config),
+      published_(daemon.counters()["published"]),
+      publish_failures_(daemon.counters()["publish_failures"])
 {
     // Every counter exists from the start, so the status lists them all at zero.
     for (const char* name : {"frames", "checksum_errors", "resyncs", "bytes_skipped", "reconnects", "silences",
@@ -64,7 +68,7 @@ void DeviceLoop::run()
             raw.direction = to_device ? ugv::raw_bytes_t::DIRECTION_TO_DEVICE : ugv::raw_bytes_t::DIRECTION_FROM_DEVICE;
             raw.nbytes = static_cast<int32_t>(n);
             raw.data.assign(data, data + n);
-            outbox_.push(std::move(raw));
+            if (!bus::publish(d_.out(), config_.raw_channel, raw)) ++publish_failures_;
         };
     }
     TapStream stream(port, tap);
@@ -82,7 +86,10 @@ void DeviceLoop::run()
         rlog.log(spdlog::level::warn, why, why, io::monotonic_us());
     };
     auto on_sample = [&](const gx1::Sample& s) {
-        outbox_.push(to_message(s, seq_++, sigma));
+        if (bus::publish(d_.out(), config_.channel, to_message(s, seq_++, sigma)))
+            ++published_;
+        else
+            ++publish_failures_;
         d_.mark_alive();
     };
 

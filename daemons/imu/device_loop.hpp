@@ -1,12 +1,15 @@
 // The device thread of ugv-imu: open the port, run the 3DM-GX1 session, publish imu_t, and
 // recover from everything (unplug, hang-up, silence, a unit that does not answer) without
-// exiting: reopen with back-off, re-initialise, and report DEGRADED meanwhile.
+// exiting: reopen with back-off, re-initialise, and report DEGRADED meanwhile. It publishes
+// on Daemon::out() itself, as ugv-lms does: handing each sample to the main thread cost a
+// second wake-up per sample, half of this daemon's CPU (docs/performance.md).
 #pragma once
 
 #include <cstdint>
 
 #include "imu_config.hpp"
-#include "outbox.hpp"
+#include <atomic>
+
 #include "ugv/daemon/daemon.hpp"
 
 namespace ugv::imu_daemon {
@@ -14,8 +17,7 @@ namespace ugv::imu_daemon {
 class DeviceLoop
 {
 public:
-    // Samples (and raw chunks) go to outbox; the main thread publishes them.
-    DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config, Outbox& outbox);
+    DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config);
     // Runs until the daemon is asked to stop.
     void run();
 
@@ -25,7 +27,8 @@ private:
 
     daemon::Daemon& d_;
     ImuConfig config_;
-    Outbox& outbox_;
+    std::atomic<int64_t>& published_;
+    std::atomic<int64_t>& publish_failures_;
     int64_t seq_ = 0;
     int64_t raw_seq_ = 0;
 };
