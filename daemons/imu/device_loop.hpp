@@ -2,14 +2,13 @@
 // recover from everything (unplug, hang-up, silence, a unit that does not answer) without
 // exiting: reopen with back-off, re-initialise, and report DEGRADED meanwhile. It publishes
 // on Daemon::out() itself, as ugv-lms does: handing each sample to the main thread cost a
-// second wake-up per sample, half of this daemon's CPU (docs/performance.md).
+// second wake-up per sample, a third of this daemon's CPU (docs/performance.md).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 
 #include "imu_config.hpp"
-#include <atomic>
-
 #include "ugv/daemon/daemon.hpp"
 
 namespace ugv::imu_daemon {
