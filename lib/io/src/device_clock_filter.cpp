@@ -77,15 +77,14 @@ int64_t DeviceClockFilter::update(double device_s, int64_t arrival_utime)
     // The line must not pass above the least delayed sample of the current block.
     offset_ = std::min(offset_, block_min_.y - drift_ * block_min_.x);
     const double y_hat = std::min(offset_ + drift_ * x, y);
-    return host0_us_ + static_cast<int64_t>(std::llround((x + y_hat) * 1e6));
+    return host_utime(x, y_hat);
 }
 
 int64_t DeviceClockFilter::predict(double device_s, int64_t read_utime) const
 {
     if (!started_) return read_utime;
     const double x = device_s - device0_s_;
-    const auto line_us = host0_us_ + static_cast<int64_t>(std::llround((x + offset_ + drift_ * x) * 1e6));
-    return std::min(line_us, read_utime);
+    return std::min(host_utime(x, offset_ + drift_ * x), read_utime);
 }
 
 }  // namespace ugv::io

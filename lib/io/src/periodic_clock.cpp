@@ -34,11 +34,17 @@ void PeriodicClock::reset()
     filter_.reset();
 }
 
+double PeriodicClock::advance(int lost_since_last)
+{
+    count_ += int64_t{periods_per_message_} * (1 + std::max(0, lost_since_last));
+    return static_cast<double>(count_) * period_s_;
+}
+
 int64_t PeriodicClock::update(int64_t arrival_utime, int lost_since_last)
 {
-    if (started_) count_ += int64_t{periods_per_message_} * (1 + std::max(0, lost_since_last));
+    const double device_s = started_ ? advance(lost_since_last) : 0.0;
     started_ = true;
-    const int64_t stamp = filter_.update(static_cast<double>(count_) * period_s_, arrival_utime);
+    const int64_t stamp = filter_.update(device_s, arrival_utime);
     const double late_s = static_cast<double>(arrival_utime - stamp) * 1e-6;
     late_in_a_row_ = late_s > period_s_ / 2 ? late_in_a_row_ + 1 : 0;
     if (late_in_a_row_ >= kLateBeforeRestart) {
@@ -54,8 +60,7 @@ int64_t PeriodicClock::update(int64_t arrival_utime, int lost_since_last)
 int64_t PeriodicClock::update_read_late(int64_t read_utime, int lost_since_last)
 {
     if (!started_) return update(read_utime, lost_since_last);
-    count_ += int64_t{periods_per_message_} * (1 + std::max(0, lost_since_last));
-    return filter_.predict(static_cast<double>(count_) * period_s_, read_utime);
+    return filter_.predict(advance(lost_since_last), read_utime);
 }
 
 }  // namespace ugv::io

@@ -14,6 +14,7 @@
 // stepped) or a device time that runs backwards restarts the model.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -51,6 +52,8 @@ private:
         double x, y;  // device elapsed (s), arrival minus device elapsed (s)
     };
     void refit();
+    // Host time (us since the epoch) of device elapsed x with arrival-minus-device y.
+    int64_t host_utime(double x, double y) const { return host0_us_ + static_cast<int64_t>(std::llround((x + y) * 1e6)); }
     void start(double device_s, int64_t arrival_utime);
 
     Params p_;

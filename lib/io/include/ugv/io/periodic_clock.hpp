@@ -52,6 +52,9 @@ public:
     uint64_t restarts() const { return slips_ + filter_.restarts(); }
 
 private:
+    // The device time of the next message: one message, plus those known lost, further on.
+    double advance(int lost_since_last);
+
     double period_s_;
     int periods_per_message_;
     DeviceClockFilter filter_;
