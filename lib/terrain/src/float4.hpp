@@ -21,6 +21,13 @@ inline Float4 load4(const float* p)
     return v;
 }
 
+inline Int4 load4(const int32_t* p)
+{
+    Int4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
 inline void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
 inline void store4(int32_t* p, Int4 v) { std::memcpy(p, &v, sizeof v); }
 
@@ -53,6 +60,16 @@ inline bool all_lanes(Int4 mask)
     return _mm_movemask_ps(__m128(mask)) == 0xf;
 #else
     return (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
+#endif
+}
+
+// Bit k set where lane k of the mask is set.
+inline unsigned lane_bits(Int4 mask)
+{
+#if defined(__SSE__)
+    return static_cast<unsigned>(_mm_movemask_ps(__m128(mask)));
+#else
+    return (mask[0] & 1u) | (mask[1] & 2u) | (mask[2] & 4u) | (mask[3] & 8u);
 #endif
 }
 

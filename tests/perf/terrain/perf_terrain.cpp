@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ugv/terrain/egocentric_grid.hpp"
+#include "ugv/terrain/simd.hpp"
 #include "ugv/terrain/terrain_mapper.hpp"
 
 using namespace ugv::terrain;
@@ -134,13 +135,29 @@ void rotate_each_iteration(benchmark::State& state, const EgocentricGrid& map)
     }
 }
 
-// A full 150x150 map.
-void BM_Rotation150(benchmark::State& state) { rotate_each_iteration(state, full_grid()); }
+// A full 150x150 map, with the best code this CPU runs (simd.hpp; the counter says which).
+void BM_Rotation150(benchmark::State& state)
+{
+    state.counters["avx2"] = simd_level() == SimdLevel::avx2;
+    rotate_each_iteration(state, full_grid());
+}
 BENCHMARK(BM_Rotation150)->Unit(benchmark::kMicrosecond);
 
 // A map as known as the demo's (37 % of the cells; the rest unknown).
 void BM_Rotation150_DemoCoverage(benchmark::State& state) { rotate_each_iteration(state, full_grid(14.5)); }
 BENCHMARK(BM_Rotation150_DemoCoverage)->Unit(benchmark::kMicrosecond);
+
+// The same two with the generic 4-wide code, which a CPU without AVX2 and FMA runs.
+void rotate_generic(benchmark::State& state, const EgocentricGrid& map)
+{
+    set_simd_level(SimdLevel::generic);
+    rotate_each_iteration(state, map);
+    set_simd_level(best_simd_level());
+}
+void BM_Rotation150_Generic(benchmark::State& state) { rotate_generic(state, full_grid()); }
+BENCHMARK(BM_Rotation150_Generic)->Unit(benchmark::kMicrosecond);
+void BM_Rotation150_DemoCoverage_Generic(benchmark::State& state) { rotate_generic(state, full_grid(14.5)); }
+BENCHMARK(BM_Rotation150_DemoCoverage_Generic)->Unit(benchmark::kMicrosecond);
 
 // One forward wrap of one row (eq. 5-8): clear 150 cells and move the index.
 void BM_Wrap150(benchmark::State& state)

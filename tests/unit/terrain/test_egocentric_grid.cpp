@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "ugv/terrain/egocentric_grid.hpp"
+#include "ugv/terrain/simd.hpp"
 
 using namespace ugv::terrain;
 
@@ -115,4 +118,119 @@ TEST_CASE("a pure shift by whole columns keeps the remainders")
     mean_offset(g.at(cell), x_re, y_re);
     CHECK(x_re == Approx(-0.25f));
     CHECK(y_re == Approx(0.25f));
+}
+
+namespace {
+
+// What a rotation must give, computed cell by cell in double from the public API: every
+// non-empty cell's samples sit at its centre plus its remainder; turned by the angle about
+// the pivot they land in one cell, and the cells landing together pool their sums.
+struct Expected
+{
+    double w = 0, wx = 0, wy = 0, wz = 0, wz2 = 0;
+    uint32_t n = 0;
+    bool ambiguous = false;  // a source landed within 1 mm of a cell edge: float and double may differ
+};
+
+std::vector<Expected> expected_rotation(const EgocentricGrid& g, double angle, double px, double py, int& dropped)
+{
+    std::vector<Expected> out(static_cast<std::size_t>(g.nx() * g.ny()));
+    const double c = std::cos(angle), s = std::sin(angle), grid = g.grid_size_m();
+    dropped = 0;
+    for (int i = 0; i < g.nx(); ++i) {
+        for (int j = 0; j < g.ny(); ++j) {
+            const CellSums& cell = g.at(i, j);
+            if (cell.empty()) continue;
+            float x_re = 0, y_re = 0;
+            mean_offset(cell, x_re, y_re);
+            const double x = g.centre_x_m(i) + x_re - px, y = g.centre_y_m(j) + y_re - py;
+            const double xn = c * x + s * y, yn = c * y - s * x;
+            const double fx = xn / grid, fy = (yn - g.y_min_m()) / grid;
+            if (!(fx >= 0 && fx < g.nx() && fy >= 0 && fy < g.ny())) {
+                ++dropped;
+                continue;
+            }
+            Expected& e = out[static_cast<std::size_t>(static_cast<int>(fx) * g.ny() + static_cast<int>(fy))];
+            const auto near_edge = [](double f) { return std::abs(f - std::round(f)) < 5e-3; };
+            e.ambiguous = e.ambiguous || near_edge(fx) || near_edge(fy);
+            double wz = 0, wz2 = 0;
+            z_sums_about(cell, 0.0, wz, wz2);
+            e.w += cell.w;
+            e.wx += cell.w * (xn - (std::floor(fx) + 0.5) * grid);
+            e.wy += cell.w * (yn - g.y_min_m() - (std::floor(fy) + 0.5) * grid);
+            e.wz += wz;
+            e.wz2 += wz2;
+            e.n += g.count(i, j);
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("transform pools every cell where its samples land, rotation after rotation, and leaves the rest empty")
+{
+    // Both builds of the rotation's arithmetic (simd.hpp), where the CPU runs them.
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (static_cast<int>(level) > static_cast<int>(best_simd_level())) {
+        WARN("skipped: this CPU cannot run the " << to_string(level) << " code");
+        return;
+    }
+    set_simd_level(level);
+    INFO("simd level " << to_string(level));
+    // 37 columns: not a whole number of groups of four. Random heights and remainders, some
+    // cells empty, the ring index not zero.
+    EgocentricGrid g(41, 37, 0.25);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    g.wrap_forward(13);
+    for (int i = 0; i < g.nx(); ++i) {
+        for (int j = 0; j < g.ny(); ++j) {
+            if (unit(rng) < 0.3f) continue;
+            for (int k = 1 + static_cast<int>(unit(rng) * 3); k > 0; --k) {
+                float xr = 0, yr = 0;
+                const float x = (static_cast<float>(i) + 0.05f + 0.9f * unit(rng)) * 0.25f;
+                const float y = static_cast<float>(g.y_min_m()) + (static_cast<float>(j) + 0.05f + 0.9f * unit(rng)) * 0.25f;
+                const int cell = g.locate(x, y, xr, yr);
+                REQUIRE(cell == g.physical(i, j));
+                g.fuse(cell, xr, yr, 100.0 + 0.5 * unit(rng), 10.0f + 100.0f * unit(rng));
+            }
+        }
+    }
+    // The frame turns about a point near its origin, there and back, so that most cells stay.
+    const double turns[][3] = {{0.087, 0.1, -0.4}, {-0.2, 0.0, 0.3}, {0.3, -0.1, 0.0}, {0.087, 0.2, 0.2}, {-0.25, -0.2, -0.1}};
+    for (const auto& turn : turns) {
+        const double angle = turn[0];
+        int expected_dropped = 0;
+        const std::vector<Expected> expected = expected_rotation(g, angle, turn[1], turn[2], expected_dropped);
+        const int dropped = g.transform(angle, turn[1], turn[2]);
+        CHECK(std::abs(dropped - expected_dropped) <= 2);
+        int compared = 0;
+        for (int i = 0; i < g.nx(); ++i) {
+            for (int j = 0; j < g.ny(); ++j) {
+                const Expected& e = expected[static_cast<std::size_t>(i * g.ny() + j)];
+                const CellSums& cell = g.at(i, j);
+                if (e.ambiguous) continue;
+                INFO("angle " << angle << " cell " << i << ", " << j);
+                if (e.n == 0) {
+                    CHECK(cell.empty());
+                    CHECK(g.count(i, j) == 0);
+                    continue;
+                }
+                REQUIRE_FALSE(cell.empty());
+                CHECK(g.count(i, j) == e.n);
+                CHECK(cell.w == Approx(e.w).epsilon(1e-5));
+                CHECK(cell.x_wx / cell.w == Approx(e.wx / e.w).margin(1e-4));
+                CHECK(cell.y_wy / cell.w == Approx(e.wy / e.w).margin(1e-4));
+                double wz = 0, wz2 = 0;
+                z_sums_about(cell, 0.0, wz, wz2);
+                CHECK(wz / cell.w == Approx(e.wz / e.w).epsilon(1e-6));
+                const CellStatistics stats = cell_statistics(cell, StatisticsKind::variance_weighted);
+                CHECK(stats.variance_z_m2 == Approx(e.wz2 / e.w - (e.wz / e.w) * (e.wz / e.w)).margin(1e-5));
+                ++compared;
+            }
+        }
+        CHECK(compared > 300);
+    }
+    set_simd_level(best_simd_level());
 }

@@ -73,15 +73,18 @@ private:
     float inv_g_, y_min_f_, nx_f_, ny_f_;
     int m_i_ = 0;
     std::vector<float> centre_x_m_, centre_y_m_;
+    // working_ holds the map before the last rotation: stale sums, overwritten or cleared
+    // by the next one (see transform).
     CellArray cells_, working_;
-    // Scratch of transform(), one row long (allocated once): each cell of the row as it
-    // will be in the working map, and where it goes.
-    struct MovedRow
+    // Scratch of transform(), allocated once.
+    struct TurnScratch
     {
-        std::vector<CellSums> cells;
-        std::vector<int32_t> to;
-        std::vector<float> centre_y;  // cell centres' y minus the pivot's
-    } moved_;
+        std::vector<float> centre_y;   // the cell centres' y minus the pivot's
+        // Cells of one row that landed on a cell already written: merged after the row.
+        std::vector<CellSums> merge_sums;
+        std::vector<uint32_t> merge_counts;
+        std::vector<int32_t> merge_to;
+    } turn_;
 };
 
 }  // namespace ugv::terrain

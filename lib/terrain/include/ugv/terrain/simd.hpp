@@ -1,0 +1,23 @@
+// Which vector code the terrain library's hot loops run. The library is built for the
+// architecture's baseline (x86-64: SSE2), so that one package runs on any vehicle computer;
+// where the CPU has AVX2 and FMA (x86-64 since 2013-2015) the rotation of the egocentric
+// map runs 8-wide code compiled for them, chosen once at start-up.
+#pragma once
+
+namespace ugv::terrain {
+
+enum class SimdLevel : int {
+    generic = 0,  // 4-float vectors: SSE2 on x86-64, NEON on ARM, scalar code elsewhere
+    avx2 = 1,     // 8-float vectors with FMA (x86-64 only)
+};
+
+// The level in use: the best the CPU has, unless set_simd_level chose a lower one.
+SimdLevel simd_level();
+// The best level this CPU runs.
+SimdLevel best_simd_level();
+// Tests and benchmarks run the generic code on an AVX2 CPU with this. Throws
+// std::invalid_argument for a level the CPU cannot run.
+void set_simd_level(SimdLevel level);
+const char* to_string(SimdLevel level);
+
+}  // namespace ugv::terrain

@@ -1,0 +1,56 @@
+// One row of the egocentric map's rotation (eq. 9-16), in two builds of the same steps:
+// 4-float vectors for any CPU and 8-float AVX2/FMA vectors (see simd.hpp). Each cell's
+// position is its centre (eq. 17-18) plus its remainder (eq. 9-10); turned with the frame
+// (eq. 11-14) it gives the cell it lands in and the new remainders (eq. 15-16, 5-7), and
+// its sums are re-expressed about the new cell's centre and stored there. Private to the
+// library.
+#pragma once
+
+#include <cstdint>
+
+#include "ugv/terrain/cell_sums.hpp"
+
+namespace ugv::terrain::detail {
+
+// Constants of one rotation. The frame turns by the angle (cos c, sin s) about the pivot.
+struct TurnConstants
+{
+    float c, s, cc, ss;                   // cos, sin and their squares
+    float inv_g, g, y_min;                // 1 / grid size, grid size, the grid's y_min (m)
+    float nx, ny, nx_last, ny_last;       // rows and columns, and each minus one half
+    float row_shift, row_stride;          // eq. 6: physical row = (i + m_i) mod nx; cells a row
+};
+
+// Where the turned cells go: the working map, whose counts are all 0 when the rotation
+// starts (its sums are stale and never read). A cell that is the first to land on a
+// working cell is stored there whole, with its count (at least 1: a count is how the next
+// one sees that the cell is taken); one that lands on a cell already taken is kept in the
+// merge list, which the caller merges (add_sums) and empties after each row.
+struct TurnTarget
+{
+    CellSums* sums;
+    uint32_t* counts;
+    CellSums* merge_sums;  // room for one row
+    uint32_t* merge_counts;
+    int32_t* merge_to;
+    int merges = 0;
+    int turned_out = 0;  // non-empty cells turned out of the map
+};
+
+// One physical row: ny cells (and their sample counts) at row_x (their centres' x minus
+// the pivot's) and centre_y[j] (minus the pivot's; padded with any value to a multiple of 8).
+using TurnRow = void (*)(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+                         const float* centre_y, TurnTarget& target);
+
+void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+                      const float* centre_y, TurnTarget& target);
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define UGV_TERRAIN_HAVE_AVX2 1
+void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+                   const float* centre_y, TurnTarget& target);
+#endif
+
+// The kernel of the level simd_level() names.
+TurnRow turn_row_kernel();
+
+}  // namespace ugv::terrain::detail
