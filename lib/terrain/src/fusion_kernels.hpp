@@ -1,9 +1,10 @@
-// The fusion loop's inner parts, written with 4-float vectors (GCC/Clang vector extensions:
-// SSE on x86-64 without -march, NEON on ARM, scalar code elsewhere). Private to the library.
+// The fusion loop's inner parts, written with vectors (GCC/Clang vector extensions: SSE on
+// x86-64 without -march, NEON on ARM, scalar code elsewhere; AVX2 where the CPU has it,
+// see simd.hpp). Private to the library.
 //
-// place_points: a group of 4 points from the body frame into the map (the end transforms
-//   of the scan blended at each point's time), eq. 19 variance, weight, cell, offset from
-//   the cell centre, and what to do with each point; no branch.
+// place_math / place_points / place_chunk: points from the body frame into the map (the
+//   end transforms of the scan blended at each point's time), eq. 19 variance, weight,
+//   cell, offset from the cell centre, and what to do with each point; no branch.
 // fuse_point_into: one sample into one cell, exactly what fuse_sample does, as two vector
 //   adds on the cell's two halves.
 #pragma once
@@ -41,22 +42,24 @@ inline void value_range(const float* v, std::size_t n, float& lo, float& hi)
 }
 
 
-// Everything place_points needs, broadcast once per batch.
-struct Placement
+// Everything place_points needs, broadcast once per batch to vectors of type V.
+template <class V>
+struct PlacementOf
 {
     // Body -> map for the scan: row r of the transform at time fraction f is
     // (at_start[4r + c] + f * change[4r + c]) for the x, y, z coefficients c = 0..2 and the
     // offset c = 3; row 2 gives the ENU height.
-    Float4 at_start[12], change[12];
-    Float4 t_min_s, inv_span_per_s;            // f = (t - t_min) * inv_span
-    Float4 error_at_start_rad2, error_change_rad2;  // eq. 19's de^2, blended like the transform
-    Float4 min_variance_m2, inverse_scale, unit_weight;  // w = inverse_scale / s2 + unit_weight
-    Float4 spread_above_m2;                    // s2 above this: spread (section 3.5)
-    Float4 inv_g, g, y_min_m, nx, ny, nx_last, ny_last;
-    Float4 row_shift, column_shift;            // the grid's ring offsets, in cells
-    Float4 ring_rows, ring_columns;            // cells around each ring
-    Float4 row_stride;                         // cells per physical row
+    V at_start[12], change[12];
+    V t_min_s, inv_span_per_s;            // f = (t - t_min) * inv_span
+    V error_at_start_rad2, error_change_rad2;  // eq. 19's de^2, blended like the transform
+    V min_variance_m2, inverse_scale, unit_weight;  // w = inverse_scale / s2 + unit_weight
+    V spread_above_m2;                    // s2 above this: spread (section 3.5)
+    V inv_g, g, y_min_m, nx, ny, nx_last, ny_last;
+    V row_shift, column_shift;            // the grid's ring offsets, in cells
+    V ring_rows, ring_columns;            // cells around each ring
+    V row_stride;                         // cells per physical row
 };
+using Placement = PlacementOf<Float4>;
 
 // Per point of a chunk: where it goes and with what.
 struct PlacedPoints
@@ -69,63 +72,98 @@ struct PlacedPoints
     alignas(16) float sample[kCapacity][4];  // {0, x from the cell centre, y from it, z}: fuse_point_into's input
 };
 
-// Points first .. first+3 of the six input arrays (lanes beyond count are padding).
-// kColumnRing: the grid's columns are a ring too (the world-aligned grid).
-template <bool kColumnRing>
-inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float4 r, Float4 v, Float4 t,
-                         PlacedPoints& out, std::size_t first)
+// What place_math works out for a vector of points (one point a lane).
+template <class V, class I>
+struct PlacedVector
 {
-    const Float4 f = (t - p.t_min_s) * p.inv_span_per_s;
-    Float4 l[3];
+    V l[3];          // map frame x, y (m) and ENU height
+    V variance_m2;   // eq. 19-20, at least min_variance_m2
+    V weight;
+    V x_rel, y_rel;  // from the centre of the cell
+    I cell;          // physical cell index
+    I fuse;          // -1: fused here; 0: a rare point (invalid, outside or spread), sorted out by the caller
+};
+
+// The transform into the map (the end transforms of the scan blended at each point's
+// time), eq. 19 variance, weight, cell, offset from the cell centre, and what to do with
+// each point; no branch. kColumnRing: the grid's columns are a ring too (the world-aligned
+// grid). Everything by reference and no helper calls, so that with 8-float vectors it is
+// inlined into AVX2 code only (see place_chunk_avx2).
+template <bool kColumnRing, class V, class I>
+inline __attribute__((always_inline)) void place_math(const PlacementOf<V>& p, const V& x, const V& y, const V& z,
+                                                      const V& r, const V& v, const V& t, PlacedVector<V, I>& out)
+{
+    const V f = (t - p.t_min_s) * p.inv_span_per_s;
     for (int row = 0; row < 3; ++row) {
-        const Float4* a = p.at_start + 4 * row;
-        const Float4* d = p.change + 4 * row;
-        l[row] = (a[0] + f * d[0]) * x + (a[1] + f * d[1]) * y + (a[2] + f * d[2]) * z + (a[3] + f * d[3]);
+        const V* a = p.at_start + 4 * row;
+        const V* d = p.change + 4 * row;
+        out.l[row] = (a[0] + f * d[0]) * x + (a[1] + f * d[1]) * y + (a[2] + f * d[2]) * z + (a[3] + f * d[3]);
     }
-    const Float4 raw = v + 2.0f * r * r * (p.error_at_start_rad2 + f * p.error_change_rad2);  // eq. 19-20
+    const V raw = v + 2.0f * r * r * (p.error_at_start_rad2 + f * p.error_change_rad2);  // eq. 19-20
     // A NaN or infinity in any input leaves one in the position or the variance (x * 0 is
     // NaN for an infinite x, and inf - inf is NaN): checking the results checks the inputs.
     // x and y are checked by `inside` (false for NaN); the rare path finds out which reason.
-    const Int4 valid = ((l[2] * 0.0f + raw * 0.0f) == 0.0f) & (v >= 0.0f);
-    const Float4 variance = max4(raw, p.min_variance_m2);
-    const Float4 w = p.inverse_scale / variance + p.unit_weight;
-    // Eq. 5-7: the cell (unwrapped i, j), clamped so that the conversion is defined for any value.
-    const Float4 fx = l[0] * p.inv_g;
-    const Float4 fy = (l[1] - p.y_min_m) * p.inv_g;
-    const Int4 inside = (fx >= 0.0f) & (fx < p.nx) & (fy >= 0.0f) & (fy < p.ny);
-    const Float4 zero = splat(0.0f);
-    const Float4 i = __builtin_convertvector(__builtin_convertvector(min4(max4(fx, zero), p.nx_last), Int4), Float4);
-    const Float4 j = __builtin_convertvector(__builtin_convertvector(min4(max4(fy, zero), p.ny_last), Int4), Float4);
-    const Float4 x_rel = l[0] - (i + 0.5f) * p.g;
-    const Float4 y_rel = l[1] - p.y_min_m - (j + 0.5f) * p.g;
+    const I valid = ((out.l[2] * 0.0f + raw * 0.0f) == 0.0f) & (v >= 0.0f);
+    out.variance_m2 = raw > p.min_variance_m2 ? raw : p.min_variance_m2;  // maxps: the minimum where raw is NaN
+    out.weight = p.inverse_scale / out.variance_m2 + p.unit_weight;
+    // Eq. 5-7: the cell (unwrapped i, j), clamped so that the conversion is defined for any
+    // value (a < b ? a : b compiles to minps, a > b ? a : b to maxps).
+    const V zero = V{};
+    const V fx = out.l[0] * p.inv_g;
+    const V fy = (out.l[1] - p.y_min_m) * p.inv_g;
+    const I inside = (fx >= 0.0f) & (fx < p.nx) & (fy >= 0.0f) & (fy < p.ny);
+    V i = fx > zero ? fx : zero;
+    i = __builtin_convertvector(__builtin_convertvector(i < p.nx_last ? i : p.nx_last, I), V);
+    V j = fy > zero ? fy : zero;
+    j = __builtin_convertvector(__builtin_convertvector(j < p.ny_last ? j : p.ny_last, I), V);
+    out.x_rel = out.l[0] - (i + 0.5f) * p.g;
+    out.y_rel = out.l[1] - p.y_min_m - (j + 0.5f) * p.g;
     // Eq. 6 (and the world ring's columns): physical = ((i + shift) mod rows) * stride + ...,
     // in float (exact below 2^24 cells; a grid has at most 2^20).
-    Float4 row = i + p.row_shift;
+    V row = i + p.row_shift;
     row = row >= p.ring_rows ? row - p.ring_rows : row;
-    Float4 column = j;
+    V column = j;
     if constexpr (kColumnRing) {
         column = column + p.column_shift;
         column = column >= p.ring_columns ? column - p.ring_columns : column;
     }
-    const Int4 cell = __builtin_convertvector(row * p.row_stride + column, Int4);
-    // -1: fused here; 0: a rare point (invalid, outside or spread), sorted out by the caller.
-    const Int4 fuse = valid & inside & (variance <= p.spread_above_m2);
-    store4(out.lx + first, l[0]);
-    store4(out.ly + first, l[1]);
-    store4(out.lz + first, l[2]);
-    store4(out.variance_m2 + first, variance);
-    store4(out.weight + first, w);
-    store4(out.cell + first, cell);
-    store4(out.fuse + first, fuse);
-    out.all_fuse[first / 4] = all_lanes(fuse);
+    out.cell = __builtin_convertvector(row * p.row_stride + column, I);
+    out.fuse = valid & inside & (out.variance_m2 <= p.spread_above_m2);
+}
+
+// Points first .. first+3 of a chunk (lanes beyond its count are padding) into out.
+template <bool kColumnRing>
+inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float4 r, Float4 v, Float4 t,
+                         PlacedPoints& out, std::size_t first)
+{
+    PlacedVector<Float4, Int4> placed;
+    place_math<kColumnRing>(p, x, y, z, r, v, t, placed);
+    store4(out.lx + first, placed.l[0]);
+    store4(out.ly + first, placed.l[1]);
+    store4(out.lz + first, placed.l[2]);
+    store4(out.variance_m2 + first, placed.variance_m2);
+    store4(out.weight + first, placed.weight);
+    store4(out.cell + first, placed.cell);
+    store4(out.fuse + first, placed.fuse);
+    out.all_fuse[first / 4] = all_lanes(placed.fuse);
     // Transposed to one {0, x_rel, y_rel, z} per point.
-    Float4 s0 = zero, s1 = x_rel, s2 = y_rel, s3 = l[2];
+    Float4 s0 = Float4{}, s1 = placed.x_rel, s2 = placed.y_rel, s3 = placed.l[2];
     transpose4(s0, s1, s2, s3);
     store4(out.sample[first + 0], s0);
     store4(out.sample[first + 1], s1);
     store4(out.sample[first + 2], s2);
     store4(out.sample[first + 3], s3);
 }
+
+// Points 0 .. count-1 of the six input arrays in[] (x, y, z, range, variance, time
+// offset; count <= PlacedPoints::kCapacity) into out: place_points four at a time, or
+// eight at a time with AVX2 (fusion_place.cpp).
+using PlaceChunk = void (*)(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
+template <bool kColumnRing>
+void place_chunk_generic(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
+// The kernel of the level simd_level() names.
+template <bool kColumnRing>
+PlaceChunk place_chunk_kernel();
 
 // The cell's layout as two vectors: {w, x_wx, y_wy, z_wz} and {z_ref_m, x_wx2, y_wy2, z_wz2}.
 static_assert(offsetof(CellSums, x_wx) == 4 && offsetof(CellSums, y_wy) == 8 && offsetof(CellSums, z_wz) == 12);

@@ -300,10 +300,11 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
         placement.nx_last = detail::splat(nx_f - 0.5f);
         placement.ny_last = detail::splat(ny_f - 0.5f);
         set_ring(placement, grid);
-        // Chunks of points, two passes each: place_points (branch-free, 4 points at a time),
+        // Chunks of points, two passes each: place_chunk (branch-free, 4 or 8 points at a time),
         // then the sums. Only the rare points (invalid, outside, spread) take a branch.
         constexpr std::size_t kChunk = detail::PlacedPoints::kCapacity;
         constexpr bool kColumnRing = std::is_same_v<Grid, WorldGrid>;
+        const detail::PlaceChunk place_chunk = detail::place_chunk_kernel<kColumnRing>();
         detail::PlacedPoints& placed = *placed_;
         uint64_t fused = 0, non_finite = 0, outside = 0;
         CellSums* const sums = grid.cells().sums_data();
@@ -316,18 +317,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             const float* pr = batch.range_m + base;
             const float* pv = batch.variance_m2 + base;
             const float* pt = batch.time_offset_s + base;
-            std::size_t k = 0;
-            for (; k + 4 <= count; k += 4)
-                detail::place_points<kColumnRing>(placement, detail::load4(px + k), detail::load4(py + k), detail::load4(pz + k),
-                                     detail::load4(pr + k), detail::load4(pv + k), detail::load4(pt + k), placed, k);
-            if (k < count) {
-                // The last 1-3 points, padded (the padding is never read back).
-                detail::Float4 in[6] = {};
-                const float* from[6] = {px, py, pz, pr, pv, pt};
-                for (int a = 0; a < 6; ++a)
-                    for (std::size_t q = 0; k + q < count; ++q) in[a][q] = from[a][k + q];
-                detail::place_points<kColumnRing>(placement, in[0], in[1], in[2], in[3], in[4], in[5], placed, k);
-            }
+            const float* const in[6] = {px, py, pz, pr, pv, pt};
+            place_chunk(placement, in, count, placed);
             int rare[kChunk];
             std::size_t rare_count = 0;
             auto add = [&](std::size_t q) {
@@ -352,7 +343,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             // the same cell, and a cell's next sum must wait for its last one (a store and a
             // reload); points 16 apart (8 degrees of a scan) rarely share a cell, so four
             // such chains overlap.
-            k = 0;
+            std::size_t k = 0;
             if (count == kChunk) {
                 constexpr std::size_t kQuarter = kChunk / 4;
                 for (; k < kQuarter; k += 4) {

@@ -5,11 +5,9 @@
 #include <cstring>
 
 #include "float4.hpp"
+#include "float8.hpp"
 #include "ugv/terrain/simd.hpp"
 
-#if defined(UGV_TERRAIN_HAVE_AVX2)
-#include <immintrin.h>
-#endif
 
 namespace ugv::terrain::detail {
 
@@ -147,15 +145,7 @@ void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint3
 
 #if defined(UGV_TERRAIN_HAVE_AVX2)
 
-#define UGV_AVX2 __attribute__((target("avx2,fma")))
-
 namespace {
-
-using Float8 = float __attribute__((vector_size(32)));
-using Int8 = int32_t __attribute__((vector_size(32)));
-
-UGV_AVX2 inline Float8 load8(const float* p) { return Float8(_mm256_loadu_ps(p)); }
-UGV_AVX2 inline Float8 splat8(float v) { return Float8{} + v; }
 
 // The 8x8 transpose, in place: unpack pairs, then quads within each 128-bit half, then the
 // halves.
@@ -186,8 +176,6 @@ UGV_AVX2 inline void transpose8(Float8* r)
     r[6] = __builtin_shufflevector(s2, s6, 4, 5, 6, 7, 12, 13, 14, 15);
     r[7] = __builtin_shufflevector(s3, s7, 4, 5, 6, 7, 12, 13, 14, 15);
 }
-
-UGV_AVX2 inline unsigned lane_bits8(Int8 mask) { return static_cast<unsigned>(_mm256_movemask_ps(__m256(mask))); }
 
 // Cells src[0..7] (counts[0..7]; padding lanes are empty cells, never placed): one cell is one
 // vector, stored with one 32-byte store.

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "float8.hpp"
 #include "ugv/terrain/cell_sums.hpp"
 
 namespace ugv::terrain::detail {
@@ -44,8 +45,7 @@ using TurnRow = void (*)(const TurnConstants& t, const CellSums* cells, const ui
 
 void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
                       const float* centre_y, TurnTarget& target);
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define UGV_TERRAIN_HAVE_AVX2 1
+#if defined(UGV_TERRAIN_HAVE_AVX2)
 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
                    const float* centre_y, TurnTarget& target);
 #endif

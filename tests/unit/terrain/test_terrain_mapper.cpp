@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "ugv/terrain/simd.hpp"
 #include "ugv/terrain/terrain_mapper.hpp"
 
 using namespace ugv::terrain;
@@ -342,4 +343,70 @@ TEST_CASE("a pose jump larger than the map resets it; bad configurations are ref
     bad = MapConfig{};
     bad.theta_d_rad = -1.0;
     CHECK_THROWS_AS(TerrainMapper(bad), std::invalid_argument);
+}
+
+namespace {
+
+// Two poses 20 ms apart, and 361 points (not a multiple of 8) over that time: ground
+// ahead, some far outside, some with a NaN, a negative variance or a large variance (to
+// be spread), fused into a map of the given mode.
+MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters)
+{
+    MapConfig c;
+    c.mode = mode;
+    TerrainMapper m(c);
+    REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0, 1e-4)) == PoseHistory::AddResult::added);
+    REQUIRE(m.add_pose(pose_at(20'000, 0.02, 0.001, 0.004, 2e-4)) == PoseHistory::AddResult::added);
+    Points p;
+    for (int k = 0; k < 361; ++k) {
+        const float a = static_cast<float>(k) * 0.0087f - 1.57f;
+        const float r = 2.0f + 0.03f * static_cast<float>(k % 97);
+        float var = 1e-4f * static_cast<float>(1 + k % 5);
+        float x = r * std::cos(a), y = r * std::sin(a), z = -0.8f + 0.01f * static_cast<float>(k % 7);
+        if (k % 53 == 0) x = kNan;
+        if (k % 61 == 0) var = -1.0f;
+        if (k % 67 == 0) var = 0.3f;  // sigma 0.55 m > G: spread
+        if (k % 71 == 0) y = 40.0f;   // beyond the map's side
+        p.add(x, y, z, var, 0.02f * static_cast<float>(k) / 361.0f, r);
+    }
+    m.fuse(p.batch(0));
+    counters = m.counters();
+    MapSnapshot s;
+    m.snapshot(s);
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("the fusion's AVX2 and generic builds give the same map and the same counters")
+{
+    if (best_simd_level() != SimdLevel::avx2) {
+        WARN("skipped: this CPU runs only the generic code");
+        return;
+    }
+    for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+        MapCounters wide_counters, generic_counters;
+        const MapSnapshot wide = fuse_mixed_scan(mode, wide_counters);
+        set_simd_level(SimdLevel::generic);
+        const MapSnapshot generic = fuse_mixed_scan(mode, generic_counters);
+        set_simd_level(best_simd_level());
+        CHECK(wide_counters.points_fused == generic_counters.points_fused);
+        CHECK(wide_counters.points_spread == generic_counters.points_spread);
+        CHECK(wide_counters.rejected_non_finite == generic_counters.rejected_non_finite);
+        CHECK(wide_counters.rejected_outside_map == generic_counters.rejected_outside_map);
+        CHECK(generic_counters.rejected_non_finite == 12);  // 7 NaN x, 6 negative variances, point 0 both
+        CHECK(generic_counters.points_spread > 0);
+        REQUIRE(wide.mean_z_m.size() == generic.mean_z_m.size());
+        int known = 0;
+        for (std::size_t k = 0; k < wide.mean_z_m.size(); ++k) {
+            INFO("cell " << k);
+            CHECK(std::isnan(wide.mean_z_m[k]) == std::isnan(generic.mean_z_m[k]));
+            CHECK(wide.count[k] == generic.count[k]);
+            if (std::isnan(generic.mean_z_m[k])) continue;
+            ++known;
+            CHECK(wide.mean_z_m[k] == Approx(generic.mean_z_m[k]).margin(1e-5));
+            CHECK(wide.variance_z_m2[k] == Approx(generic.variance_z_m2[k]).margin(1e-6));
+        }
+        CHECK(known > 100);
+    }
 }

@@ -1,7 +1,8 @@
 // Which vector code the terrain library's hot loops run. The library is built for the
 // architecture's baseline (x86-64: SSE2), so that one package runs on any vehicle computer;
-// where the CPU has AVX2 and FMA (x86-64 since 2013-2015) the rotation of the egocentric
-// map runs 8-wide code compiled for them, chosen once at start-up.
+// where the CPU has AVX2 and FMA (x86-64 since 2013-2015) the placement of points in the
+// fusion loop and the rotation of the egocentric map run 8-wide code compiled for them,
+// chosen once at start-up.
 #pragma once
 
 namespace ugv::terrain {
