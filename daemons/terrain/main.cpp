@@ -7,6 +7,7 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/daemon/daemon.hpp"
 #include "ugv/io/clock.hpp"
+#include "ugv/terrain/simd.hpp"
 
 using namespace ugv;
 
@@ -70,8 +71,8 @@ int main(int argc, char** argv)
                                       node.on_points(m);
                                       sync_counters();
                                   });
-    spdlog::info("mapping {} + {} -> {} at {} Hz of message time", cfg.points_channel, cfg.pose_channel,
-                 cfg.map_channel, cfg.publish_hz);
+    spdlog::info("mapping {} + {} -> {} at {} Hz of message time ({} vector code)", cfg.points_channel,
+                 cfg.pose_channel, cfg.map_channel, cfg.publish_hz, ugv::terrain::to_string(ugv::terrain::simd_level()));
     const int rc = d.run();
     sync_counters();
     spdlog::info("{} points fused, {} maps published, {} wraps, {} rotations", c.get("points_fused"),

@@ -8,7 +8,6 @@
 #include "float8.hpp"
 #include "ugv/terrain/simd.hpp"
 
-
 namespace ugv::terrain::detail {
 
 // Both builds take the cells' sums across the lanes by a transpose (a cell is one row of
