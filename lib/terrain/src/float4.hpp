@@ -33,36 +33,6 @@ inline void store4(int32_t* p, Int4 v) { std::memcpy(p, &v, sizeof v); }
 
 inline Float4 splat(float v) { return Float4{v, v, v, v}; }
 
-// a < b ? a : b and a > b ? a : b per lane (b where either is NaN). One instruction on x86:
-// without -ffast-math the compiler does not turn the selects into minps/maxps itself.
-inline Float4 min4(Float4 a, Float4 b)
-{
-#if defined(__SSE__)
-    return Float4(_mm_min_ps(__m128(a), __m128(b)));
-#else
-    return a < b ? a : b;
-#endif
-}
-
-inline Float4 max4(Float4 a, Float4 b)
-{
-#if defined(__SSE__)
-    return Float4(_mm_max_ps(__m128(a), __m128(b)));
-#else
-    return a > b ? a : b;
-#endif
-}
-
-// True when every lane of the mask is set (-1).
-inline bool all_lanes(Int4 mask)
-{
-#if defined(__SSE__)
-    return _mm_movemask_ps(__m128(mask)) == 0xf;
-#else
-    return (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
-#endif
-}
-
 // Bit k set where lane k of the mask is set.
 inline unsigned lane_bits(Int4 mask)
 {

@@ -30,8 +30,8 @@ inline void value_range(const float* v, std::size_t n, float& lo, float& hi)
     std::size_t k = 0;
     for (; k + 4 <= n; k += 4) {
         const Float4 t = load4(v + k);
-        lo4 = min4(t, lo4);  // NaN in t: lo4 stays
-        hi4 = max4(t, hi4);
+        lo4 = t < lo4 ? t : lo4;  // minps; NaN in t: lo4 stays
+        hi4 = t > hi4 ? t : hi4;
     }
     for (; k < n; ++k) {
         lo4[0] = std::min(lo4[0], v[k]);  // NaN in v[k]: lo4 stays (std::min returns its first argument)
@@ -145,7 +145,7 @@ inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float
     store4(out.weight + first, placed.weight);
     store4(out.cell + first, placed.cell);
     store4(out.fuse + first, placed.fuse);
-    out.all_fuse[first / 4] = all_lanes(placed.fuse);
+    out.all_fuse[first / 4] = lane_bits(placed.fuse) == 0xfu;
     // Transposed to one {0, x_rel, y_rel, z} per point.
     Float4 s0 = Float4{}, s1 = placed.x_rel, s2 = placed.y_rel, s3 = placed.l[2];
     transpose4(s0, s1, s2, s3);

@@ -87,9 +87,8 @@ BENCHMARK(BM_Fusion_VarianceWeighted);
 // The same with the generic 4-wide placement, which a CPU without AVX2 and FMA runs.
 void BM_Fusion_VarianceWeighted_Generic(benchmark::State& state)
 {
-    set_simd_level(SimdLevel::generic);
+    const ScopedSimdLevel use(SimdLevel::generic);
     run_fusion(state, MapConfig{}, 0.2);
-    set_simd_level(best_simd_level());
 }
 BENCHMARK(BM_Fusion_VarianceWeighted_Generic);
 
@@ -162,9 +161,8 @@ BENCHMARK(BM_Rotation150_DemoCoverage)->Unit(benchmark::kMicrosecond);
 // The same two with the generic 4-wide code, which a CPU without AVX2 and FMA runs.
 void rotate_generic(benchmark::State& state, const EgocentricGrid& map)
 {
-    set_simd_level(SimdLevel::generic);
+    const ScopedSimdLevel use(SimdLevel::generic);
     rotate_each_iteration(state, map);
-    set_simd_level(best_simd_level());
 }
 void BM_Rotation150_Generic(benchmark::State& state) { rotate_generic(state, full_grid()); }
 BENCHMARK(BM_Rotation150_Generic)->Unit(benchmark::kMicrosecond);

@@ -176,7 +176,7 @@ TEST_CASE("transform pools every cell where its samples land, rotation after rot
         WARN("skipped: this CPU cannot run the " << to_string(level) << " code");
         return;
     }
-    set_simd_level(level);
+    const ScopedSimdLevel use(level);
     INFO("simd level " << to_string(level));
     // 37 columns: not a whole number of groups of four. Random heights and remainders, some
     // cells empty, the ring index not zero.
@@ -232,5 +232,4 @@ TEST_CASE("transform pools every cell where its samples land, rotation after rot
         }
         CHECK(compared > 300);
     }
-    set_simd_level(best_simd_level());
 }

@@ -36,3 +36,12 @@ TEST_CASE("the best SIMD level is the one the CPU's flags in /proc/cpuinfo allow
     CHECK(best_simd_level() == SimdLevel::generic);
 #endif
 }
+
+TEST_CASE("ScopedSimdLevel gives the level before back at the end of its scope")
+{
+    {
+        const ScopedSimdLevel use(SimdLevel::generic);
+        CHECK(simd_level() == SimdLevel::generic);
+    }
+    CHECK(simd_level() == best_simd_level());
+}

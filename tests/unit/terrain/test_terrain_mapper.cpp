@@ -387,9 +387,10 @@ TEST_CASE("the fusion's AVX2 and generic builds give the same map and the same c
     for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
         MapCounters wide_counters, generic_counters;
         const MapSnapshot wide = fuse_mixed_scan(mode, wide_counters);
-        set_simd_level(SimdLevel::generic);
-        const MapSnapshot generic = fuse_mixed_scan(mode, generic_counters);
-        set_simd_level(best_simd_level());
+        const MapSnapshot generic = [&] {
+            const ScopedSimdLevel use(SimdLevel::generic);
+            return fuse_mixed_scan(mode, generic_counters);
+        }();
         CHECK(wide_counters.points_fused == generic_counters.points_fused);
         CHECK(wide_counters.points_spread == generic_counters.points_spread);
         CHECK(wide_counters.rejected_non_finite == generic_counters.rejected_non_finite);

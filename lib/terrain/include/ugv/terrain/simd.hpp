@@ -21,4 +21,18 @@ SimdLevel best_simd_level();
 void set_simd_level(SimdLevel level);
 const char* to_string(SimdLevel level);
 
+// set_simd_level for a scope: the level before comes back when it ends, whatever the way
+// out (a failed test assertion included).
+class ScopedSimdLevel
+{
+public:
+    explicit ScopedSimdLevel(SimdLevel level) : previous_(simd_level()) { set_simd_level(level); }
+    ~ScopedSimdLevel() { set_simd_level(previous_); }
+    ScopedSimdLevel(const ScopedSimdLevel&) = delete;
+    ScopedSimdLevel& operator=(const ScopedSimdLevel&) = delete;
+
+private:
+    SimdLevel previous_;
+};
+
 }  // namespace ugv::terrain
