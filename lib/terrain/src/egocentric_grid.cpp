@@ -27,7 +27,8 @@ EgocentricGrid::EgocentricGrid(int nx, int ny, double grid_size_m)
     for (int j = 0; j < ny; ++j)
         centre_y_m_[static_cast<std::size_t>(j)] = static_cast<float>(y_min_m_ + (j + 0.5) * grid_m_);
     const auto row = static_cast<std::size_t>((ny + 7) / 8 * 8);  // whole groups of eight
-    turn_.centre_y.resize(row, 0.0f);
+    turn_.column_x.resize(row, 0.0f);
+    turn_.column_y.resize(row, 0.0f);
     turn_.merge_sums.resize(row);
     turn_.merge_counts.resize(row);
     turn_.merge_to.resize(row);
@@ -69,23 +70,30 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // trigonometric lookup of section 3.4 reduced to a single entry.
     const float c = static_cast<float>(std::cos(angle_rad));
     const float s = static_cast<float>(std::sin(angle_rad));
-    const detail::TurnConstants t{c,
-                                  s,
+    const detail::TurnConstants t{c * inv_g_,
+                                  s * inv_g_,
                                   c * c,
                                   s * s,
-                                  inv_g_,
                                   static_cast<float>(grid_m_),
-                                  y_min_f_,
+                                  -0.5f * static_cast<float>(grid_m_),
                                   nx_f_,
                                   ny_f_,
-                                  nx_f_ - 0.5f,
-                                  ny_f_ - 0.5f,
-                                  static_cast<float>(m_i_),
-                                  ny_f_};
+                                  static_cast<float>(m_i_) * ny_f_,
+                                  ny_f_,
+                                  nx_ * ny_};
     const detail::TurnRow turn_row = detail::turn_row_kernel();
     const float px = static_cast<float>(pivot_x_m), py = static_cast<float>(pivot_y_m);
-    float* centre_y = turn_.centre_y.data();
-    for (int j = 0; j < ny_; ++j) centre_y[j] = centre_y_m_[static_cast<std::size_t>(j)] - py;
+    // A cell at (x, y) from the pivot turns to the new row and column (in cells)
+    //   f_x = (c x + s y) / g,  f_y = (c y - s x - y_min) / g,
+    // with x = row's centre + x_re and y = column's centre + y_re: the centres' parts are
+    // one number per row and one per column.
+    float* column_x = turn_.column_x.data();
+    float* column_y = turn_.column_y.data();
+    for (int j = 0; j < ny_; ++j) {
+        const float y = centre_y_m_[static_cast<std::size_t>(j)] - py;
+        column_x[j] = s * y * inv_g_;
+        column_y[j] = (c * y - y_min_f_) * inv_g_;
+    }
     CellSums* working = working_.sums_data();
     uint32_t* taken = working_.counts_data();
     std::memset(taken, 0, working_.size() * sizeof *taken);
@@ -98,8 +106,9 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
         int i = pr - m_i_;
         if (i < 0) i += nx_;
         const int first = pr * ny_;
-        turn_row(t, &cells_.sums(first), &cells_.count(first), ny_, centre_x_m_[static_cast<std::size_t>(i)] - px,
-                 centre_y, target);
+        const float x = centre_x_m_[static_cast<std::size_t>(i)] - px;
+        turn_row(t, &cells_.sums(first), &cells_.count(first), ny_, c * x * inv_g_, s * x * inv_g_, column_x, column_y,
+                 target);
         for (int m = 0; m < target.merges; ++m)  // ~1 % of the cells at 5 deg
             working_.add(target.merge_to[m], target.merge_sums[m], target.merge_counts[m]);
         target.merges = 0;

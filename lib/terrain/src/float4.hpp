@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__SSE__)
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#elif defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
@@ -40,6 +42,18 @@ inline unsigned lane_bits(Int4 mask)
     return static_cast<unsigned>(_mm_movemask_ps(__m128(mask)));
 #else
     return (mask[0] & 1u) | (mask[1] & 2u) | (mask[2] & 4u) | (mask[3] & 8u);
+#endif
+}
+
+// Towards zero, as int; any int for a value that has none (out of range, or not a number).
+inline Int4 truncate_to_int(Float4 v)
+{
+#if defined(__SSE2__)
+    return Int4(_mm_cvttps_epi32(__m128(v)));
+#else
+    v = v > -2.0e9f ? v : -2.0e9f;  // false for NaN: converted from -2e9
+    v = v < 2.0e9f ? v : 2.0e9f;
+    return __builtin_convertvector(v, Int4);
 #endif
 }
 

@@ -24,6 +24,7 @@ UGV_AVX2 inline void store8(int32_t* p, const Int8& v) { std::memcpy(p, &v, size
 UGV_AVX2 inline Float8 splat8(float v) { return Float8{} + v; }
 // Bit k set where lane k of the mask is set.
 UGV_AVX2 inline unsigned lane_bits8(const Int8& mask) { return static_cast<unsigned>(_mm256_movemask_ps(__m256(mask))); }
+UGV_AVX2 inline unsigned lane_bits(const Int8& mask) { return lane_bits8(mask); }
 
 }  // namespace ugv::terrain::detail
 

@@ -13,8 +13,8 @@ namespace ugv::terrain::detail {
 // Both builds take the cells' sums across the lanes by a transpose (a cell is one row of
 // the matrix, its sums {w, x_wx, y_wy, z_wz, z_ref_m, x_wx2, y_wy2, z_wz2} the columns), do
 // the arithmetic of turn_sums on whole vectors, transpose back and store each cell where
-// it lands. An empty cell (z_ref_m NaN) computes garbage that is never stored; the
-// arithmetic has no branch.
+// it lands. An empty cell (w and z_ref_m NaN) computes NaN, which no comparison lets into
+// the map; the arithmetic has no branch.
 
 namespace {
 
@@ -44,55 +44,73 @@ inline CellSums* place(CellSums* sums, uint32_t* counts, TurnTarget& out, int32_
     return out.merge_sums + m;
 }
 
-// The rotation's constants broadcast to vectors of type V.
+// The rotation's constants broadcast to vectors of type V, and the row's.
 template <class V>
 struct TurnVectors
 {
-    V c, s, cc, ss, inv_g, g, y_min, nx, ny, nx_last, ny_last, row_shift, row_stride, row_x;
+    V c_g, s_g, cc, ss, g, minus_half_g, nx, ny, row_shift_cells, row_stride, row_x, row_y;
 };
+
+// The two steps of turn_sums that each build does its own way, with results by reference
+// (an 8-float vector returned by value would not be AVX code in the template):
+// - whole_below: the whole numbers below v, for v >= 0 (any value for v < 0 or not a number:
+//   such a cell is outside the map, and never placed);
+// - ring_cell: the working cell of row i, column j, (i + m_i) mod nx rows on (eq. 6), for a
+//   cell inside.
+inline void whole_below(const Float4& v, Float4& whole) { whole = __builtin_convertvector(truncate_to_int(v), Float4); }
+inline void ring_cell(const TurnVectors<Float4>& k, const Float4& i, const Float4& j, int32_t cells, Int4& cell)
+{
+    const Int4 c = truncate_to_int(i * k.row_stride + (j + k.row_shift_cells));
+    cell = c - ((c > cells - 1) & cells);  // comparison lanes are 0 or -1
+}
+#if defined(UGV_TERRAIN_HAVE_AVX2)
+UGV_AVX2 inline void whole_below(const Float8& v, Float8& whole) { whole = Float8(_mm256_floor_ps(__m256(v))); }
+UGV_AVX2 inline void ring_cell(const TurnVectors<Float8>& k, const Float8& i, const Float8& j, int32_t cells, Int8& cell)
+{
+    const __m256i c = _mm256_cvttps_epi32(__m256(i * k.row_stride + (j + k.row_shift_cells)));
+    cell = Int8(_mm256_min_epu32(c, _mm256_sub_epi32(c, _mm256_set1_epi32(cells))));  // c - cells: above c unless c >= cells
+}
+#endif
 
 // Eq. 9-16 on a vector of cells. r[0..7] hold the sums {w, x_wx, y_wy, z_wz, z_ref_m, x_wx2,
 // y_wy2, z_wz2}, one cell a lane; x_wx, y_wy, x_wx2 and y_wy2 are replaced by their values
-// about the new cell's centre. Sets cell (the working cell, unwrapped and ring-indexed),
-// inside (the cell lands in the map) and known (it is not empty). Everything by reference
-// and no helper calls: with V 8 floats wide this is inlined into AVX2 code only.
+// about the new cell's centre. Sets cell (the working cell, ring-indexed; any value where
+// the cell is not placed), the lanes placed (known, and landing in the map) and the lanes
+// known. Everything by reference: with V 8 floats wide this is inlined into AVX2 code only.
 template <class V, class I>
-inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V* r, const V& centre_y, I& cell,
-                                                     I& inside, I& known)
+inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V* r, const V& column_x,
+                                                     const V& column_y, int32_t cells, I& cell, unsigned& placed,
+                                                     unsigned& known)
 {
-    const V w = r[0], x_wx = r[1], y_wy = r[2], z_ref = r[4], x_wx2 = r[5], y_wy2 = r[6];
+    const V w = r[0], x_wx = r[1], y_wy = r[2], x_wx2 = r[5], y_wy2 = r[6];
     const V zero = V{};
-    const V inv_w = w > zero ? 1.0f / w : zero;  // an empty cell's w is NaN
-    const V x_re = x_wx * inv_w;                 // eq. 9-10: the remainder
+    // A known cell's w is above 0; an empty cell's is NaN, and so is everything that
+    // follows from it, which keeps it out of the map.
+    const V inv_w = 1.0f / w;
+    const V x_re = x_wx * inv_w;  // eq. 9-10: the remainder
     const V y_re = y_wy * inv_w;
-    const V x = k.row_x + x_re;  // eq. 17-18: the centre, plus the remainder
-    const V y = centre_y + y_re;
-    const V xn = k.c * x + k.s * y;  // eq. 11-14: the world stays, the frame turns
-    const V yn = k.c * y - k.s * x;
-    const V fx = xn * k.inv_g;  // eq. 15-16, 5-7
-    const V fy = (yn - k.y_min) * k.inv_g;
-    inside = (fx >= 0.0f) & (fx < k.nx) & (fy >= 0.0f) & (fy < k.ny);
-    // Clamped so that the conversion is defined for any value (a < b ? a : b: minps).
-    V i = fx > zero ? fx : zero;
-    i = __builtin_convertvector(__builtin_convertvector(i < k.nx_last ? i : k.nx_last, I), V);
-    V j = fy > zero ? fy : zero;
-    j = __builtin_convertvector(__builtin_convertvector(j < k.ny_last ? j : k.ny_last, I), V);
-    const V x_rel = xn - (i + 0.5f) * k.g;
-    const V y_rel = yn - k.y_min - (j + 0.5f) * k.g;
-    V row = i + k.row_shift;
-    row = row >= k.nx ? row - k.nx : row;
-    cell = __builtin_convertvector(row * k.row_stride + j, I);
-    known = z_ref == z_ref;  // a NaN reference: an empty cell
-    // The samples' spread about their mean, turned with the frame (the x-y covariance is
-    // not kept, so the two variances mix by cos^2 and sin^2).
-    V var_x = x_wx2 * inv_w - x_re * x_re;
-    var_x = var_x > zero ? var_x : zero;
-    V var_y = y_wy2 * inv_w - y_re * y_re;
-    var_y = var_y > zero ? var_y : zero;
+    // Eq. 11-18: the centre plus the remainder, turned with the frame, in cells (eq. 15-16, 5-7).
+    const V fx = k.c_g * x_re + (k.s_g * y_re + (k.row_x + column_x));
+    const V fy = k.c_g * y_re - (k.s_g * x_re + (k.row_y - column_y));
+    const V lower = fx < fy ? fx : fy;
+    placed = lane_bits((lower >= 0.0f) & (fx < k.nx) & (fy < k.ny));
+    known = lane_bits(w == w);
+    V i, j;
+    whole_below(fx, i);
+    whole_below(fy, j);
+    ring_cell(k, i, j, cells, cell);
+    const V x_rel = (fx - i) * k.g + k.minus_half_g;  // from the new cell's centre (m)
+    const V y_rel = (fy - j) * k.g + k.minus_half_g;
+    // The samples' spread about their mean, times w, turned with the frame (the x-y covariance
+    // is not kept, so the two variances mix by cos^2 and sin^2): w var = sum w x^2 - x_re sum w x.
+    V w_var_x = x_wx2 - x_wx * x_re;
+    w_var_x = w_var_x > zero ? w_var_x : zero;
+    V w_var_y = y_wy2 - y_wy * y_re;
+    w_var_y = w_var_y > zero ? w_var_y : zero;
     r[1] = w * x_rel;
     r[2] = w * y_rel;
-    r[5] = w * (k.cc * var_x + k.ss * var_y + x_rel * x_rel);
-    r[6] = w * (k.ss * var_x + k.cc * var_y + y_rel * y_rel);
+    r[5] = k.cc * w_var_x + (k.ss * w_var_y + r[1] * x_rel);
+    r[6] = k.ss * w_var_x + (k.cc * w_var_y + r[2] * y_rel);
 }
 
 // The number of bits set in a 4-bit mask (baseline x86-64 has no popcnt instruction).
@@ -100,19 +118,19 @@ constexpr int kBitsSet[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
 
 // Cells src[0..3] (counts[0..3]; padding lanes are empty cells, never placed).
 inline __attribute__((always_inline)) void turn4(const TurnVectors<Float4>& k, const CellSums* src,
-                                                 const uint32_t* counts, const Float4& centre_y,
-                                                 TurnTarget& out)
+                                                 const uint32_t* counts, const float* column_x,
+                                                 const float* column_y, int32_t cells, TurnTarget& out)
 {
     Float4 r[8] = {load4(&src[0].w),       load4(&src[1].w),       load4(&src[2].w),       load4(&src[3].w),
                    load4(&src[0].z_ref_m), load4(&src[1].z_ref_m), load4(&src[2].z_ref_m), load4(&src[3].z_ref_m)};
     transpose4(r[0], r[1], r[2], r[3]);
     transpose4(r[4], r[5], r[6], r[7]);
-    Int4 cell, inside, known;
-    turn_sums(k, r, centre_y, cell, inside, known);
+    Int4 cell;
+    unsigned placed, known;
+    turn_sums(k, r, load4(column_x), load4(column_y), cells, cell, placed, known);
     transpose4(r[0], r[1], r[2], r[3]);  // back to one cell per pair of vectors: r[c], r[c + 4]
     transpose4(r[4], r[5], r[6], r[7]);
-    out.turned_out += kBitsSet[lane_bits(known & ~inside)];
-    const unsigned placed = lane_bits(known & inside);
+    out.turned_out += kBitsSet[known & ~placed];
     CellSums* const sums = out.sums;  // locals: stores through the target's pointers could alias its fields
     uint32_t* const taken = out.counts;
     for (int c = 0; c < 4; ++c) {
@@ -126,19 +144,18 @@ inline __attribute__((always_inline)) void turn4(const TurnVectors<Float4>& k, c
 }  // namespace
 
 void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
-                      const float* centre_y, TurnTarget& target)
+                      float row_y, const float* column_x, const float* column_y, TurnTarget& target)
 {
-    const TurnVectors<Float4> k{splat(t.c),       splat(t.s),         splat(t.cc),         splat(t.ss),
-                                splat(t.inv_g),   splat(t.g),         splat(t.y_min),      splat(t.nx),
-                                splat(t.ny),      splat(t.nx_last),   splat(t.ny_last),    splat(t.row_shift),
-                                splat(t.row_stride), splat(row_x)};
+    const TurnVectors<Float4> k{splat(t.c_g), splat(t.s_g), splat(t.cc),  splat(t.ss),
+                                splat(t.g),   splat(t.minus_half_g), splat(t.nx), splat(t.ny),
+                                splat(t.row_shift_cells), splat(t.row_stride), splat(row_x), splat(row_y)};
     int j = 0;
     for (; j + 4 <= ny; j += 4)
-        if (!all_empty(cells + j, 4)) turn4(k, cells + j, counts + j, load4(centre_y + j), target);
+        if (!all_empty(cells + j, 4)) turn4(k, cells + j, counts + j, column_x + j, column_y + j, t.cells, target);
     if (j < ny) {
         CellSums tail[4];  // the last 1-3 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
-        turn4(k, tail, counts + j, load4(centre_y + j), target);
+        turn4(k, tail, counts + j, column_x + j, column_y + j, t.cells, target);
     }
 }
 
@@ -176,45 +193,65 @@ UGV_AVX2 inline void transpose8(Float8* r)
     r[7] = __builtin_shufflevector(s3, s7, 4, 5, 6, 7, 12, 13, 14, 15);
 }
 
+// Stores a turned cell in working cell dst with its count n, or (rarely, the cell is taken)
+// in the merge list.
+UGV_AVX2 inline __attribute__((always_inline)) void put8(CellSums* sums, uint32_t* taken, TurnTarget& out,
+                                                         uint32_t dst, uint32_t n, const Float8& cell)
+{
+    if (__builtin_expect(taken[dst] == 0, 1)) {
+        taken[dst] = n;
+        _mm256_store_ps(&sums[dst].w, __m256(cell));
+        return;
+    }
+    const int m = out.merges++;
+    out.merge_to[m] = static_cast<int32_t>(dst);
+    out.merge_counts[m] = n;
+    _mm256_storeu_ps(&out.merge_sums[m].w, __m256(cell));
+}
+
 // Cells src[0..7] (counts[0..7]; padding lanes are empty cells, never placed): one cell is one
 // vector, stored with one 32-byte store.
-UGV_AVX2 inline void turn8(const TurnVectors<Float8>& k, const CellSums* src, const uint32_t* counts,
-                           const Float8& centre_y, TurnTarget& out)
+UGV_AVX2 inline __attribute__((always_inline)) void turn8(const TurnVectors<Float8>& k, const CellSums* src,
+                                                          const uint32_t* counts, const float* column_x,
+                                                          const float* column_y, int32_t cells, TurnTarget& out)
 {
     Float8 r[8] = {load8(&src[0].w), load8(&src[1].w), load8(&src[2].w), load8(&src[3].w),
                    load8(&src[4].w), load8(&src[5].w), load8(&src[6].w), load8(&src[7].w)};
     transpose8(r);
-    Int8 cell, inside, known;
-    turn_sums(k, r, centre_y, cell, inside, known);
+    Int8 cell;
+    unsigned placed, known;
+    turn_sums(k, r, load8(column_x), load8(column_y), cells, cell, placed, known);
     transpose8(r);
-    out.turned_out += __builtin_popcount(lane_bits8(known & ~inside));
-    const unsigned placed = lane_bits8(known & inside);
+    out.turned_out += __builtin_popcount(known & ~placed);
+    // At least 1 (0 only if 2^32 samples wrapped it): a count is how the next cell sees that
+    // its working cell is taken.
+    const Int8 n = Int8(_mm256_max_epu32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(counts)),
+                                         _mm256_set1_epi32(1)));
     CellSums* const sums = out.sums;  // locals: stores through the target's pointers could alias its fields
     uint32_t* const taken = out.counts;
     if (placed == 0xffu) {  // most groups of a known map: no test per cell
-        for (int c = 0; c < 8; ++c) _mm256_storeu_ps(&place(sums, taken, out, cell[c], counts[c])->w, __m256(r[c]));
+        for (int c = 0; c < 8; ++c) put8(sums, taken, out, static_cast<uint32_t>(cell[c]), static_cast<uint32_t>(n[c]), r[c]);
         return;
     }
     for (int c = 0; c < 8; ++c)
-        if (placed >> c & 1u) _mm256_storeu_ps(&place(sums, taken, out, cell[c], counts[c])->w, __m256(r[c]));
+        if (placed >> c & 1u) put8(sums, taken, out, static_cast<uint32_t>(cell[c]), static_cast<uint32_t>(n[c]), r[c]);
 }
 
 }  // namespace
 
 UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
-                            const float* centre_y, TurnTarget& target)
+                            float row_y, const float* column_x, const float* column_y, TurnTarget& target)
 {
-    const TurnVectors<Float8> k{splat8(t.c),       splat8(t.s),         splat8(t.cc),         splat8(t.ss),
-                                splat8(t.inv_g),   splat8(t.g),         splat8(t.y_min),      splat8(t.nx),
-                                splat8(t.ny),      splat8(t.nx_last),   splat8(t.ny_last),    splat8(t.row_shift),
-                                splat8(t.row_stride), splat8(row_x)};
+    const TurnVectors<Float8> k{splat8(t.c_g), splat8(t.s_g), splat8(t.cc),  splat8(t.ss),
+                                splat8(t.g),   splat8(t.minus_half_g), splat8(t.nx), splat8(t.ny),
+                                splat8(t.row_shift_cells), splat8(t.row_stride), splat8(row_x), splat8(row_y)};
     int j = 0;
     for (; j + 8 <= ny; j += 8)
-        if (!all_empty(cells + j, 8)) turn8(k, cells + j, counts + j, load8(centre_y + j), target);
+        if (!all_empty(cells + j, 8)) turn8(k, cells + j, counts + j, column_x + j, column_y + j, t.cells, target);
     if (j < ny) {
         CellSums tail[8];  // the last 1-7 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
-        turn8(k, tail, counts + j, load8(centre_y + j), target);
+        turn8(k, tail, counts + j, column_x + j, column_y + j, t.cells, target);
     }
 }
 

@@ -16,10 +16,12 @@ namespace ugv::terrain::detail {
 // Constants of one rotation. The frame turns by the angle (cos c, sin s) about the pivot.
 struct TurnConstants
 {
-    float c, s, cc, ss;                   // cos, sin and their squares
-    float inv_g, g, y_min;                // 1 / grid size, grid size, the grid's y_min (m)
-    float nx, ny, nx_last, ny_last;       // rows and columns, and each minus one half
-    float row_shift, row_stride;          // eq. 6: physical row = (i + m_i) mod nx; cells a row
+    float c_g, s_g, cc, ss;               // cos and sin of the angle over the grid size (1/m); cos^2, sin^2
+    float g, minus_half_g;                // grid size (m), and minus half of it
+    float nx, ny;                         // rows and columns
+    float row_shift_cells;                // eq. 6: physical row = (i + m_i) mod nx; m_i times the row stride
+    float row_stride;                     // cells a row
+    int32_t cells;                        // nx * ny
 };
 
 // Where the turned cells go: the working map, whose counts are all 0 when the rotation
@@ -38,16 +40,17 @@ struct TurnTarget
     int turned_out = 0;  // non-empty cells turned out of the map
 };
 
-// One physical row: ny cells (and their sample counts) at row_x (their centres' x minus
-// the pivot's) and centre_y[j] (minus the pivot's; padded with any value to a multiple of 8).
+// One physical row: ny cells (and their sample counts), whose centres turn to
+// (row_x + column_x[j], column_y[j] - row_y) in cells (column_* padded with any value to a
+// multiple of 8).
 using TurnRow = void (*)(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
-                         const float* centre_y, TurnTarget& target);
+                         float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 
 void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
-                      const float* centre_y, TurnTarget& target);
+                      float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 #if defined(UGV_TERRAIN_HAVE_AVX2)
 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
-                   const float* centre_y, TurnTarget& target);
+                   float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 #endif
 
 // The kernel of the level simd_level() names.

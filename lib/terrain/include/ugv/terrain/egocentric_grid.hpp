@@ -79,7 +79,9 @@ private:
     // Scratch of transform(), allocated once.
     struct TurnScratch
     {
-        std::vector<float> centre_y;   // the cell centres' y minus the pivot's
+        // Per column j, in cells: the part of a turned cell's new row and column that comes
+        // from its column's centre (see transform).
+        std::vector<float> column_x, column_y;
         // Cells of one row that landed on a cell already written: merged after the row.
         std::vector<CellSums> merge_sums;
         std::vector<uint32_t> merge_counts;
