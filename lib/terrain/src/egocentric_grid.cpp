@@ -32,6 +32,8 @@ EgocentricGrid::EgocentricGrid(int nx, int ny, double grid_size_m)
     turn_.merge_sums.resize(row);
     turn_.merge_counts.resize(row);
     turn_.merge_to.resize(row);
+    turn_.held.resize(static_cast<std::size_t>(nx) * ((static_cast<std::size_t>(ny) + 7) / 8), 0);
+    turn_.turned.resize(turn_.held.size(), 0);
 }
 
 void EgocentricGrid::clear()
@@ -57,6 +59,24 @@ void EgocentricGrid::wrap_backward(int rows)
     for (int r = 0; r < rows; ++r)
         cells_.clear(static_cast<std::size_t>(physical(r, 0)), static_cast<std::size_t>(ny_));
 }
+
+namespace {
+
+// Bit q set where counts[q] is 0, for the first min(8, left) counts.
+unsigned zero_bits(const uint32_t* counts, std::size_t left)
+{
+    if (left >= 8) {
+        const detail::Int4 a = detail::load4(reinterpret_cast<const int32_t*>(counts));
+        const detail::Int4 b = detail::load4(reinterpret_cast<const int32_t*>(counts + 4));
+        return detail::lane_bits(a == 0) | detail::lane_bits(b == 0) << 4;
+    }
+    unsigned bits = 0;
+    for (std::size_t q = 0; q < left; ++q)
+        if (counts[q] == 0) bits |= 1u << q;
+    return bits;
+}
+
+}  // namespace
 
 int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y_m)
 {
@@ -97,6 +117,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     CellSums* working = working_.sums_data();
     uint32_t* taken = working_.counts_data();
     std::memset(taken, 0, working_.size() * sizeof *taken);
+    const std::size_t row_bytes = (static_cast<std::size_t>(ny_) + 7) / 8;
     detail::TurnTarget target{working,
                               taken,
                               turn_.merge_sums.data(),
@@ -107,25 +128,27 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
         if (i < 0) i += nx_;
         const int first = pr * ny_;
         const float x = centre_x_m_[static_cast<std::size_t>(i)] - px;
+        target.known_row = turn_.turned.data() + static_cast<std::size_t>(pr) * row_bytes;
         turn_row(t, &cells_.sums(first), &cells_.count(first), ny_, c * x * inv_g_, s * x * inv_g_, column_x, column_y,
                  target);
         for (int m = 0; m < target.merges; ++m)  // ~1 % of the cells at 5 deg
             working_.add(target.merge_to[m], target.merge_sums[m], target.merge_counts[m]);
         target.merges = 0;
     }
-    // The cells nothing landed on (count 0) still hold the sums of two rotations ago; most
-    // of those are unknown ground that was unknown then too, and need no write.
-    const std::size_t n = working_.size();
-    std::size_t k = 0;
-    for (; k + 8 <= n; k += 8) {
-        const detail::Int4 a = detail::load4(reinterpret_cast<const int32_t*>(taken + k));
-        const detail::Int4 b = detail::load4(reinterpret_cast<const int32_t*>(taken + k + 4));
-        if (detail::lane_bits((a == 0) | (b == 0)) == 0) continue;  // eight cells taken: most of a known map
-        for (std::size_t q = k; q < k + 8; ++q)
-            if (taken[q] == 0 && !working[q].empty()) working[q] = CellSums{};
+    // The cells nothing landed on (count 0) still hold the sums of the map turned last time
+    // where that map held sums (its known bits, kept from then): most of the cells nothing
+    // lands on are unknown ground that was unknown then too, and need no write, and the
+    // sums, out of the cache by now, are not read to find out.
+    for (int pr = 0; pr < nx_; ++pr) {
+        const std::size_t first = static_cast<std::size_t>(pr) * static_cast<std::size_t>(ny_);
+        const uint8_t* held = turn_.held.data() + static_cast<std::size_t>(pr) * row_bytes;
+        for (std::size_t j = 0; j < static_cast<std::size_t>(ny_); j += 8) {
+            unsigned clear = zero_bits(taken + first + j, static_cast<std::size_t>(ny_) - j) & held[j / 8];
+            for (; clear != 0; clear &= clear - 1)
+                working[first + j + static_cast<std::size_t>(__builtin_ctz(clear))] = CellSums{};
+        }
     }
-    for (; k < n; ++k)
-        if (taken[k] == 0 && !working[k].empty()) working[k] = CellSums{};
+    turn_.held.swap(turn_.turned);  // the map just turned is the next working map
     cells_.swap(working_);
     return target.turned_out;
 }

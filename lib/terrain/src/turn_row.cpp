@@ -116,8 +116,9 @@ inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V*
 // The number of bits set in a 4-bit mask (baseline x86-64 has no popcnt instruction).
 constexpr int kBitsSet[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
 
-// Cells src[0..3] (counts[0..3]; padding lanes are empty cells, never placed).
-inline __attribute__((always_inline)) void turn4(const TurnVectors<Float4>& k, const CellSums* src,
+// Cells src[0..3] (counts[0..3]; padding lanes are empty cells, never placed). Returns the
+// lanes that hold sums.
+inline __attribute__((always_inline)) unsigned turn4(const TurnVectors<Float4>& k, const CellSums* src,
                                                  const uint32_t* counts, const float* column_x,
                                                  const float* column_y, int32_t cells, TurnTarget& out)
 {
@@ -139,6 +140,7 @@ inline __attribute__((always_inline)) void turn4(const TurnVectors<Float4>& k, c
         store4(&to->w, r[c]);
         store4(&to->z_ref_m, r[c + 4]);
     }
+    return known;
 }
 
 }  // namespace
@@ -149,13 +151,17 @@ void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint3
     const TurnVectors<Float4> k{splat(t.c_g), splat(t.s_g), splat(t.cc),  splat(t.ss),
                                 splat(t.g),   splat(t.minus_half_g), splat(t.nx), splat(t.ny),
                                 splat(t.row_shift_cells), splat(t.row_stride), splat(row_x), splat(row_y)};
+    std::memset(target.known_row, 0, static_cast<std::size_t>(ny + 7) / 8);
     int j = 0;
     for (; j + 4 <= ny; j += 4)
-        if (!all_empty(cells + j, 4)) turn4(k, cells + j, counts + j, column_x + j, column_y + j, t.cells, target);
+        if (!all_empty(cells + j, 4))
+            target.known_row[j / 8] |= static_cast<uint8_t>(
+                turn4(k, cells + j, counts + j, column_x + j, column_y + j, t.cells, target) << (j % 8));
     if (j < ny) {
         CellSums tail[4];  // the last 1-3 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
-        turn4(k, tail, counts + j, column_x + j, column_y + j, t.cells, target);
+        target.known_row[j / 8] |= static_cast<uint8_t>(
+            turn4(k, tail, counts + j, column_x + j, column_y + j, t.cells, target) << (j % 8));
     }
 }
 
@@ -210,8 +216,8 @@ UGV_AVX2 inline __attribute__((always_inline)) void put8(CellSums* sums, uint32_
 }
 
 // Cells src[0..7] (counts[0..7]; padding lanes are empty cells, never placed): one cell is one
-// vector, stored with one 32-byte store.
-UGV_AVX2 inline __attribute__((always_inline)) void turn8(const TurnVectors<Float8>& k, const CellSums* src,
+// vector, stored with one 32-byte store. Returns the lanes that hold sums.
+UGV_AVX2 inline __attribute__((always_inline)) unsigned turn8(const TurnVectors<Float8>& k, const CellSums* src,
                                                           const uint32_t* counts, const float* column_x,
                                                           const float* column_y, int32_t cells, TurnTarget& out)
 {
@@ -231,10 +237,11 @@ UGV_AVX2 inline __attribute__((always_inline)) void turn8(const TurnVectors<Floa
     uint32_t* const taken = out.counts;
     if (placed == 0xffu) {  // most groups of a known map: no test per cell
         for (int c = 0; c < 8; ++c) put8(sums, taken, out, static_cast<uint32_t>(cell[c]), static_cast<uint32_t>(n[c]), r[c]);
-        return;
+        return known;
     }
     for (int c = 0; c < 8; ++c)
         if (placed >> c & 1u) put8(sums, taken, out, static_cast<uint32_t>(cell[c]), static_cast<uint32_t>(n[c]), r[c]);
+    return known;
 }
 
 }  // namespace
@@ -247,11 +254,14 @@ UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const
                                 splat8(t.row_shift_cells), splat8(t.row_stride), splat8(row_x), splat8(row_y)};
     int j = 0;
     for (; j + 8 <= ny; j += 8)
-        if (!all_empty(cells + j, 8)) turn8(k, cells + j, counts + j, column_x + j, column_y + j, t.cells, target);
+        target.known_row[j / 8] = all_empty(cells + j, 8) ? 0
+                                  : static_cast<uint8_t>(turn8(k, cells + j, counts + j, column_x + j, column_y + j,
+                                                               t.cells, target));
     if (j < ny) {
         CellSums tail[8];  // the last 1-7 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
-        turn8(k, tail, counts + j, column_x + j, column_y + j, t.cells, target);
+        target.known_row[j / 8] =
+            static_cast<uint8_t>(turn8(k, tail, counts + j, column_x + j, column_y + j, t.cells, target));
     }
 }
 

@@ -38,6 +38,9 @@ struct TurnTarget
     int32_t* merge_to;
     int merges = 0;
     int turned_out = 0;  // non-empty cells turned out of the map
+    // Bit j % 8 of byte j / 8 set where cell j of the row holds sums: the kernel writes the
+    // row's (ny + 7) / 8 bytes.
+    uint8_t* known_row = nullptr;
 };
 
 // One physical row: ny cells (and their sample counts), whose centres turn to

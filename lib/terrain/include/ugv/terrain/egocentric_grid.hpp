@@ -86,6 +86,10 @@ private:
         std::vector<CellSums> merge_sums;
         std::vector<uint32_t> merge_counts;
         std::vector<int32_t> merge_to;
+        // Which cells hold sums, a bit a cell, (ny + 7) / 8 bytes a row: of the working map
+        // (held, known from the kernel when the working map was the one turned), and of the
+        // map being turned (turned).
+        std::vector<uint8_t> held, turned;
     } turn_;
 };
 
