@@ -86,12 +86,23 @@ inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V*
     const V zero = V{};
     // A known cell's w is above 0; an empty cell's is NaN, and so is everything that
     // follows from it, which keeps it out of the map.
+    // The division is the longest step: what needs no quotient is done beside it, and each
+    // chain after it is short (an FMA to the new row and column, an FMA to the variances).
     const V inv_w = 1.0f / w;
-    const V x_re = x_wx * inv_w;  // eq. 9-10: the remainder
-    const V y_re = y_wy * inv_w;
-    // Eq. 11-18: the centre plus the remainder, turned with the frame, in cells (eq. 15-16, 5-7).
-    const V fx = k.c_g * x_re + (k.s_g * y_re + (k.row_x + column_x));
-    const V fy = k.c_g * y_re - (k.s_g * x_re + (k.row_y - column_y));
+    // Eq. 9-18: the centre plus the remainder (x_re, y_re) = (x_wx, y_wy) / w, turned with the
+    // frame, in cells (eq. 15-16, 5-7).
+    const V turned_x = k.c_g * x_wx + k.s_g * y_wy;
+    const V turned_y = k.c_g * y_wy - k.s_g * x_wx;
+    const V fx = turned_x * inv_w + (k.row_x + column_x);
+    const V fy = turned_y * inv_w + (column_y - k.row_y);
+    // The samples' spread about their mean, times w: w var = sum w x^2 - (sum w x)^2 / w.
+    V w_var_x = x_wx2 - (x_wx * x_wx) * inv_w;
+    w_var_x = w_var_x > zero ? w_var_x : zero;
+    V w_var_y = y_wy2 - (y_wy * y_wy) * inv_w;
+    w_var_y = w_var_y > zero ? w_var_y : zero;
+    // Turned with the frame (the x-y covariance is not kept, so the two mix by cos^2 and sin^2).
+    const V turned_var_x = k.cc * w_var_x + k.ss * w_var_y;
+    const V turned_var_y = k.ss * w_var_x + k.cc * w_var_y;
     const V lower = fx < fy ? fx : fy;
     placed = lane_bits((lower >= 0.0f) & (fx < k.nx) & (fy < k.ny));
     known = lane_bits(w == w);
@@ -101,16 +112,10 @@ inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V*
     ring_cell(k, i, j, cells, cell);
     const V x_rel = (fx - i) * k.g + k.minus_half_g;  // from the new cell's centre (m)
     const V y_rel = (fy - j) * k.g + k.minus_half_g;
-    // The samples' spread about their mean, times w, turned with the frame (the x-y covariance
-    // is not kept, so the two variances mix by cos^2 and sin^2): w var = sum w x^2 - x_re sum w x.
-    V w_var_x = x_wx2 - x_wx * x_re;
-    w_var_x = w_var_x > zero ? w_var_x : zero;
-    V w_var_y = y_wy2 - y_wy * y_re;
-    w_var_y = w_var_y > zero ? w_var_y : zero;
     r[1] = w * x_rel;
     r[2] = w * y_rel;
-    r[5] = k.cc * w_var_x + (k.ss * w_var_y + r[1] * x_rel);
-    r[6] = k.ss * w_var_x + (k.cc * w_var_y + r[2] * y_rel);
+    r[5] = r[1] * x_rel + turned_var_x;
+    r[6] = r[2] * y_rel + turned_var_y;
 }
 
 // The number of bits set in a 4-bit mask (baseline x86-64 has no popcnt instruction).
