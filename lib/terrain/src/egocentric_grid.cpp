@@ -80,7 +80,7 @@ unsigned zero_bits(const uint32_t* counts, std::size_t left)
 
 int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y_m)
 {
-    // The working map holds the map of two rotations ago: stale sums, never read. Its
+    // The working map holds the map turned last time: stale sums, never read. Its
     // counts are zeroed first; a cell that lands where the count is still 0 overwrites the
     // sums whole (a store, no load: the maps do not fit the L2 cache, and a load there
     // stalled the loop on every cell); one that lands on a cell already taken is merged

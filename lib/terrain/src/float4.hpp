@@ -51,8 +51,9 @@ inline Int4 truncate_to_int(Float4 v)
 #if defined(__SSE2__)
     return Int4(_mm_cvttps_epi32(__m128(v)));
 #else
-    v = v > -2.0e9f ? v : -2.0e9f;  // false for NaN: converted from -2e9
-    v = v < 2.0e9f ? v : 2.0e9f;
+    const Float4 lowest = splat(-2.0e9f), highest = splat(2.0e9f);
+    v = v > lowest ? v : lowest;  // false for NaN: converted from -2e9
+    v = v < highest ? v : highest;
     return __builtin_convertvector(v, Int4);
 #endif
 }

@@ -85,9 +85,9 @@ inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V*
     const V w = r[0], x_wx = r[1], y_wy = r[2], x_wx2 = r[5], y_wy2 = r[6];
     const V zero = V{};
     // A known cell's w is above 0; an empty cell's is NaN, and so is everything that
-    // follows from it, which keeps it out of the map.
-    // The division is the longest step: what needs no quotient is done beside it, and each
-    // chain after it is short (an FMA to the new row and column, an FMA to the variances).
+    // follows from it, which keeps it out of the map. The division is the longest step:
+    // what needs no quotient is done beside it, and each chain after it is short (an FMA to
+    // the new row and column, an FMA to the variances).
     const V inv_w = 1.0f / w;
     // Eq. 9-18: the centre plus the remainder (x_re, y_re) = (x_wx, y_wy) / w, turned with the
     // frame, in cells (eq. 15-16, 5-7).
@@ -265,8 +265,10 @@ UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const
     if (j < ny) {
         CellSums tail[8];  // the last 1-7 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
+        uint32_t tail_counts[8] = {};  // turn8 loads eight: none past the end of the map
+        std::copy(counts + j, counts + ny, tail_counts);
         target.known_row[j / 8] =
-            static_cast<uint8_t>(turn8(k, tail, counts + j, column_x + j, column_y + j, t.cells, target));
+            static_cast<uint8_t>(turn8(k, tail, tail_counts, column_x + j, column_y + j, t.cells, target));
     }
 }
 
