@@ -166,27 +166,22 @@ std::vector<Expected> expected_rotation(const EgocentricGrid& g, double angle, d
     return out;
 }
 
-}  // namespace
-
-TEST_CASE("transform pools every cell where its samples land, rotation after rotation, and leaves the rest empty")
+// False, with a warning, where the CPU cannot run the level's code.
+bool cpu_runs(SimdLevel level)
 {
-    // Both builds of the rotation's arithmetic (simd.hpp), where the CPU runs them.
-    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
-    if (static_cast<int>(level) > static_cast<int>(best_simd_level())) {
-        WARN("skipped: this CPU cannot run the " << to_string(level) << " code");
-        return;
-    }
-    const ScopedSimdLevel use(level);
-    INFO("simd level " << to_string(level));
-    // 37 columns: not a whole number of groups of four. Random heights and remainders, some
-    // cells empty, the ring index not zero.
-    EgocentricGrid g(41, 37, 0.25);
-    std::mt19937 rng(7);
+    if (static_cast<int>(level) <= static_cast<int>(best_simd_level())) return true;
+    WARN("skipped: this CPU cannot run the " << to_string(level) << " code");
+    return false;
+}
+
+// One to three samples at random places and heights into each cell, but for a share
+// skip_share of the cells, chosen at random.
+void fuse_random(EgocentricGrid& g, std::mt19937& rng, float skip_share)
+{
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    g.wrap_forward(13);
     for (int i = 0; i < g.nx(); ++i) {
         for (int j = 0; j < g.ny(); ++j) {
-            if (unit(rng) < 0.3f) continue;
+            if (unit(rng) < skip_share) continue;
             for (int k = 1 + static_cast<int>(unit(rng) * 3); k > 0; --k) {
                 float xr = 0, yr = 0;
                 const float x = (static_cast<float>(i) + 0.05f + 0.9f * unit(rng)) * 0.25f;
@@ -197,39 +192,85 @@ TEST_CASE("transform pools every cell where its samples land, rotation after rot
             }
         }
     }
+}
+
+// Turns g by angle about (px, py) and checks every cell against expected_rotation, with
+// each SIMD build; returns how many non-empty cells were compared.
+int turn_and_compare(EgocentricGrid& g, double angle, double px, double py)
+{
+    int expected_dropped = 0;
+    const std::vector<Expected> expected = expected_rotation(g, angle, px, py, expected_dropped);
+    const int dropped = g.transform(angle, px, py);
+    CHECK(std::abs(dropped - expected_dropped) <= 2);
+    int compared = 0;
+    for (int i = 0; i < g.nx(); ++i) {
+        for (int j = 0; j < g.ny(); ++j) {
+            const Expected& e = expected[static_cast<std::size_t>(i * g.ny() + j)];
+            const CellSums& cell = g.at(i, j);
+            if (e.ambiguous) continue;
+            INFO("angle " << angle << " cell " << i << ", " << j);
+            if (e.n == 0) {
+                CHECK(cell.empty());
+                CHECK(g.count(i, j) == 0);
+                continue;
+            }
+            REQUIRE_FALSE(cell.empty());
+            CHECK(g.count(i, j) == e.n);
+            CHECK(cell.w == Approx(e.w).epsilon(1e-5));
+            CHECK(cell.x_wx / cell.w == Approx(e.wx / e.w).margin(1e-4));
+            CHECK(cell.y_wy / cell.w == Approx(e.wy / e.w).margin(1e-4));
+            double wz = 0, wz2 = 0;
+            z_sums_about(cell, 0.0, wz, wz2);
+            CHECK(wz / cell.w == Approx(e.wz / e.w).epsilon(1e-6));
+            const CellStatistics stats = cell_statistics(cell, StatisticsKind::variance_weighted);
+            CHECK(stats.variance_z_m2 == Approx(e.wz2 / e.w - (e.wz / e.w) * (e.wz / e.w)).margin(1e-5));
+            ++compared;
+        }
+    }
+    return compared;
+}
+
+}  // namespace
+
+TEST_CASE("transform pools every cell where its samples land, rotation after rotation, and leaves the rest empty")
+{
+    // Both builds of the rotation's arithmetic (simd.hpp), where the CPU runs them.
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    INFO("simd level " << to_string(level));
+    // 37 columns: not a whole number of groups of four. Random heights and remainders, some
+    // cells empty, the ring index not zero.
+    EgocentricGrid g(41, 37, 0.25);
+    std::mt19937 rng(7);
+    g.wrap_forward(13);
+    fuse_random(g, rng, 0.3f);
     // The frame turns about a point near its origin, there and back, so that most cells stay.
     const double turns[][3] = {{0.087, 0.1, -0.4}, {-0.2, 0.0, 0.3}, {0.3, -0.1, 0.0}, {0.087, 0.2, 0.2}, {-0.25, -0.2, -0.1}};
-    for (const auto& turn : turns) {
-        const double angle = turn[0];
-        int expected_dropped = 0;
-        const std::vector<Expected> expected = expected_rotation(g, angle, turn[1], turn[2], expected_dropped);
-        const int dropped = g.transform(angle, turn[1], turn[2]);
-        CHECK(std::abs(dropped - expected_dropped) <= 2);
-        int compared = 0;
-        for (int i = 0; i < g.nx(); ++i) {
-            for (int j = 0; j < g.ny(); ++j) {
-                const Expected& e = expected[static_cast<std::size_t>(i * g.ny() + j)];
-                const CellSums& cell = g.at(i, j);
-                if (e.ambiguous) continue;
-                INFO("angle " << angle << " cell " << i << ", " << j);
-                if (e.n == 0) {
-                    CHECK(cell.empty());
-                    CHECK(g.count(i, j) == 0);
-                    continue;
-                }
-                REQUIRE_FALSE(cell.empty());
-                CHECK(g.count(i, j) == e.n);
-                CHECK(cell.w == Approx(e.w).epsilon(1e-5));
-                CHECK(cell.x_wx / cell.w == Approx(e.wx / e.w).margin(1e-4));
-                CHECK(cell.y_wy / cell.w == Approx(e.wy / e.w).margin(1e-4));
-                double wz = 0, wz2 = 0;
-                z_sums_about(cell, 0.0, wz, wz2);
-                CHECK(wz / cell.w == Approx(e.wz / e.w).epsilon(1e-6));
-                const CellStatistics stats = cell_statistics(cell, StatisticsKind::variance_weighted);
-                CHECK(stats.variance_z_m2 == Approx(e.wz2 / e.w - (e.wz / e.w) * (e.wz / e.w)).margin(1e-5));
-                ++compared;
-            }
-        }
-        CHECK(compared > 300);
-    }
+    for (const auto& turn : turns) CHECK(turn_and_compare(g, turn[0], turn[1], turn[2]) > 300);
+}
+
+// The working map keeps the map turned last time; which of its cells still hold sums is
+// known from that turn, not read. Wraps, new samples and a clear of the current map in
+// between must not let old sums back in.
+TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a clear come between rotations")
+{
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    INFO("simd level " << to_string(level));
+    EgocentricGrid g(41, 37, 0.25);  // 1.25 x 4.6 m: a cell moves up to 6 cells at 0.3 rad
+    std::mt19937 rng(11);
+    fuse_random(g, rng, 0.3f);
+    CHECK(turn_and_compare(g, 0.087, 0.1, -0.2) > 300);
+    g.wrap_forward(4);
+    fuse_random(g, rng, 0.8f);  // new samples in a fifth of the cells, known or not
+    CHECK(turn_and_compare(g, -0.15, 0.0, 0.1) > 300);
+    g.wrap_backward(2);
+    CHECK(turn_and_compare(g, 0.3, -0.1, 0.0) > 200);
+    g.clear();
+    CHECK(turn_and_compare(g, 0.1, 0.0, 0.0) == 0);  // every cell checked empty
+    fuse_random(g, rng, 0.9f);
+    CHECK(turn_and_compare(g, -0.087, 0.2, 0.1) > 50);
+    CHECK(turn_and_compare(g, 0.2, 0.0, -0.3) > 50);
 }
