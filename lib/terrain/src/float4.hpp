@@ -31,7 +31,6 @@ inline Int4 load4(const int32_t* p)
 }
 
 inline void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
-inline void store4(int32_t* p, Int4 v) { std::memcpy(p, &v, sizeof v); }
 
 inline Float4 splat(float v) { return Float4{v, v, v, v}; }
 

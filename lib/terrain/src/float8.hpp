@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define UGV_TERRAIN_HAVE_AVX2 1
@@ -19,12 +18,9 @@ using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int32_t __attribute__((vector_size(32)));
 
 UGV_AVX2 inline Float8 load8(const float* p) { return Float8(_mm256_loadu_ps(p)); }
-UGV_AVX2 inline void store8(float* p, const Float8& v) { _mm256_storeu_ps(p, __m256(v)); }
-UGV_AVX2 inline void store8(int32_t* p, const Int8& v) { std::memcpy(p, &v, sizeof v); }
 UGV_AVX2 inline Float8 splat8(float v) { return Float8{} + v; }
 // Bit k set where lane k of the mask is set.
-UGV_AVX2 inline unsigned lane_bits8(const Int8& mask) { return static_cast<unsigned>(_mm256_movemask_ps(__m256(mask))); }
-UGV_AVX2 inline unsigned lane_bits(const Int8& mask) { return lane_bits8(mask); }
+UGV_AVX2 inline unsigned lane_bits(const Int8& mask) { return static_cast<unsigned>(_mm256_movemask_ps(__m256(mask))); }
 
 }  // namespace ugv::terrain::detail
 

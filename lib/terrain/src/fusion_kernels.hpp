@@ -131,6 +131,21 @@ inline __attribute__((always_inline)) void place_math(const PlacementOf<V>& p, c
     out.fuse = valid & inside & (out.variance_m2 <= p.spread_above_m2);
 }
 
+// The per-point results of place_math into out's arrays from point first on, one lane a
+// point (V 4 or 8 floats wide; inlined, so the 8-wide copies are AVX2 code).
+template <class V, class I>
+inline __attribute__((always_inline)) void store_placed(const PlacedVector<V, I>& placed, PlacedPoints& out,
+                                                         std::size_t first)
+{
+    std::memcpy(out.lx + first, &placed.l[0], sizeof(V));
+    std::memcpy(out.ly + first, &placed.l[1], sizeof(V));
+    std::memcpy(out.lz + first, &placed.l[2], sizeof(V));
+    std::memcpy(out.variance_m2 + first, &placed.variance_m2, sizeof(V));
+    std::memcpy(out.weight + first, &placed.weight, sizeof(V));
+    std::memcpy(out.cell + first, &placed.cell, sizeof(I));
+    std::memcpy(out.fuse + first, &placed.fuse, sizeof(I));
+}
+
 // Points first .. first+3 of a chunk (lanes beyond its count are padding) into out.
 template <bool kColumnRing>
 inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float4 r, Float4 v, Float4 t,
@@ -138,13 +153,7 @@ inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float
 {
     PlacedVector<Float4, Int4> placed;
     place_math<kColumnRing>(p, x, y, z, r, v, t, placed);
-    store4(out.lx + first, placed.l[0]);
-    store4(out.ly + first, placed.l[1]);
-    store4(out.lz + first, placed.l[2]);
-    store4(out.variance_m2 + first, placed.variance_m2);
-    store4(out.weight + first, placed.weight);
-    store4(out.cell + first, placed.cell);
-    store4(out.fuse + first, placed.fuse);
+    store_placed(placed, out, first);
     out.all_fuse[first / 4] = lane_bits(placed.fuse) == 0xfu;
     // Transposed to one {0, x_rel, y_rel, z} per point.
     Float4 s0 = Float4{}, s1 = placed.x_rel, s2 = placed.y_rel, s3 = placed.l[2];

@@ -57,14 +57,8 @@ UGV_AVX2 inline void place_points8(const PlacementOf<Float8>& p, const float* co
     PlacedVector<Float8, Int8> placed;
     place_math<kColumnRing>(p, load8(in[0] + first), load8(in[1] + first), load8(in[2] + first),
                             load8(in[3] + first), load8(in[4] + first), load8(in[5] + first), placed);
-    store8(out.lx + first, placed.l[0]);
-    store8(out.ly + first, placed.l[1]);
-    store8(out.lz + first, placed.l[2]);
-    store8(out.variance_m2 + first, placed.variance_m2);
-    store8(out.weight + first, placed.weight);
-    store8(out.cell + first, placed.cell);
-    store8(out.fuse + first, placed.fuse);
-    const unsigned bits = lane_bits8(placed.fuse);
+    store_placed(placed, out, first);
+    const unsigned bits = lane_bits(placed.fuse);
     out.all_fuse[first / 4] = (bits & 0xfu) == 0xfu;
     out.all_fuse[first / 4 + 1] = (bits >> 4) == 0xfu;
     // One {0, x_rel, y_rel, z} per point: a 4x4 transpose in each 128-bit half gives points
