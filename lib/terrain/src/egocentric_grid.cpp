@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
-#include "float4.hpp"
+#include "turn_end.hpp"
 #include "turn_row.hpp"
 
 namespace ugv::terrain {
@@ -32,7 +31,7 @@ EgocentricGrid::EgocentricGrid(int nx, int ny, double grid_size_m)
     turn_.merge_sums.resize(row);
     turn_.merge_counts.resize(row);
     turn_.merge_to.resize(row);
-    turn_.held.resize(static_cast<std::size_t>(nx) * ((static_cast<std::size_t>(ny) + 7) / 8), 0);
+    turn_.held.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(detail::held_row_bytes(ny)), 0);
     turn_.turned.resize(turn_.held.size(), 0);
 }
 
@@ -60,31 +59,14 @@ void EgocentricGrid::wrap_backward(int rows)
         cells_.clear(static_cast<std::size_t>(physical(r, 0)), static_cast<std::size_t>(ny_));
 }
 
-namespace {
-
-// Bit q set where counts[q] is 0, for the first min(8, left) counts.
-unsigned zero_bits(const uint32_t* counts, std::size_t left)
-{
-    if (left >= 8) {
-        const detail::Int4 a = detail::load4(reinterpret_cast<const int32_t*>(counts));
-        const detail::Int4 b = detail::load4(reinterpret_cast<const int32_t*>(counts + 4));
-        return detail::lane_bits(a == 0) | detail::lane_bits(b == 0) << 4;
-    }
-    unsigned bits = 0;
-    for (std::size_t q = 0; q < left; ++q)
-        if (counts[q] == 0) bits |= 1u << q;
-    return bits;
-}
-
-}  // namespace
-
 int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y_m)
 {
-    // The working map holds the map turned last time: stale sums, never read. Its
-    // counts are zeroed first; a cell that lands where the count is still 0 overwrites the
-    // sums whole (a store, no load: the maps do not fit the L2 cache, and a load there
-    // stalled the loop on every cell); one that lands on a cell already taken is merged
-    // after its row; the cells nothing landed on are made empty at the end.
+    // The working map holds the map turned last time: stale sums, never read, and counts
+    // all 0 (the kernel zeroed them as it read them then). A cell that lands where the count
+    // is still 0 overwrites the sums whole (a store, no load: the maps do not fit the L2
+    // cache, and a load there stalled the loop on every cell); one that lands on a cell
+    // already taken is merged after its row; the cells nothing landed on are made empty at
+    // the end.
     //
     // One cos and sin per rotation: every cell turns by the same angle, so this is the
     // trigonometric lookup of section 3.4 reduced to a single entry.
@@ -116,8 +98,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     }
     CellSums* working = working_.sums_data();
     uint32_t* taken = working_.counts_data();
-    std::memset(taken, 0, working_.size() * sizeof *taken);
-    const std::size_t row_bytes = (static_cast<std::size_t>(ny_) + 7) / 8;
+    const auto row_bytes = static_cast<std::size_t>(detail::held_row_bytes(ny_));
     detail::TurnTarget target{working,
                               taken,
                               turn_.merge_sums.data(),
@@ -139,15 +120,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // where that map held sums (its known bits, kept from then): most of the cells nothing
     // lands on are unknown ground that was unknown then too, and need no write, and the
     // sums, out of the cache by now, are not read to find out.
-    for (int pr = 0; pr < nx_; ++pr) {
-        const std::size_t first = static_cast<std::size_t>(pr) * static_cast<std::size_t>(ny_);
-        const uint8_t* held = turn_.held.data() + static_cast<std::size_t>(pr) * row_bytes;
-        for (std::size_t j = 0; j < static_cast<std::size_t>(ny_); j += 8) {
-            unsigned clear = zero_bits(taken + first + j, static_cast<std::size_t>(ny_) - j) & held[j / 8];
-            for (; clear != 0; clear &= clear - 1)
-                working[first + j + static_cast<std::size_t>(__builtin_ctz(clear))] = CellSums{};
-        }
-    }
+    detail::clear_unlanded_kernel()(working, taken, turn_.held.data(), nx_, ny_);
     turn_.held.swap(turn_.turned);  // the map just turned is the next working map
     cells_.swap(working_);
     return target.turned_out;

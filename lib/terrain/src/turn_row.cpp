@@ -152,7 +152,7 @@ inline __attribute__((always_inline)) unsigned turn4(const TurnVectors<Float4>& 
 
 }  // namespace
 
-void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+void turn_row_generic(const TurnConstants& t, const CellSums* cells, uint32_t* counts, int ny, float row_x,
                       float row_y, const float* column_x, const float* column_y, TurnTarget& target)
 {
     const TurnVectors<Float4> k{splat(t.c_g), splat(t.s_g), splat(t.cc),  splat(t.ss),
@@ -170,6 +170,7 @@ void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint3
         target.known_row[j / 8] |= static_cast<uint8_t>(
             turn4(k, tail, counts + j, column_x + j, column_y + j, t.cells, target) << (j % 8));
     }
+    std::fill(counts, counts + ny, 0u);
 }
 
 #if defined(UGV_TERRAIN_HAVE_AVX2)
@@ -252,17 +253,19 @@ UGV_AVX2 inline __attribute__((always_inline)) unsigned turn8(const TurnVectors<
 
 }  // namespace
 
-UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, uint32_t* counts, int ny, float row_x,
                             float row_y, const float* column_x, const float* column_y, TurnTarget& target)
 {
     const TurnVectors<Float8> k{splat8(t.c_g), splat8(t.s_g), splat8(t.cc),  splat8(t.ss),
                                 splat8(t.g),   splat8(t.minus_half_g), splat8(t.nx), splat8(t.ny),
                                 splat8(t.row_shift_cells), splat8(t.row_stride), splat8(row_x), splat8(row_y)};
     int j = 0;
-    for (; j + 8 <= ny; j += 8)
+    for (; j + 8 <= ny; j += 8) {
         target.known_row[j / 8] = all_empty(cells + j, 8) ? 0
                                   : static_cast<uint8_t>(turn8(k, cells + j, counts + j, column_x + j, column_y + j,
                                                                t.cells, target));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(counts + j), _mm256_setzero_si256());
+    }
     if (j < ny) {
         CellSums tail[8];  // the last 1-7 cells, padded with empty ones (never placed)
         std::copy(cells + j, cells + ny, tail);
@@ -270,6 +273,7 @@ UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const
         std::copy(counts + j, counts + ny, tail_counts);
         target.known_row[j / 8] =
             static_cast<uint8_t>(turn8(k, tail, tail_counts, column_x + j, column_y + j, t.cells, target));
+        std::fill(counts + j, counts + ny, 0u);
     }
 }
 

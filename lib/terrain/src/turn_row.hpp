@@ -39,20 +39,22 @@ struct TurnTarget
     int merges = 0;
     int turned_out = 0;  // non-empty cells turned out of the map
     // Bit j % 8 of byte j / 8 set where cell j of the row holds sums: the kernel writes the
-    // row's (ny + 7) / 8 bytes.
+    // row's first (ny + 7) / 8 bytes (of held_row_bytes(ny), turn_end.hpp).
     uint8_t* known_row = nullptr;
 };
 
 // One physical row: ny cells (and their sample counts), whose centres turn to
 // (row_x + column_x[j], column_y[j] - row_y) in cells (column_* padded with any value to a
-// multiple of 8).
-using TurnRow = void (*)(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+// multiple of 8). The row's counts are set to 0 once read: the map being turned is the
+// next rotation's working map, whose counts must start at 0, and zeroing them here, where
+// they are in the cache, costs less than a pass over the whole map then.
+using TurnRow = void (*)(const TurnConstants& t, const CellSums* cells, uint32_t* counts, int ny, float row_x,
                          float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 
-void turn_row_generic(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+void turn_row_generic(const TurnConstants& t, const CellSums* cells, uint32_t* counts, int ny, float row_x,
                       float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 #if defined(UGV_TERRAIN_HAVE_AVX2)
-void turn_row_avx2(const TurnConstants& t, const CellSums* cells, const uint32_t* counts, int ny, float row_x,
+void turn_row_avx2(const TurnConstants& t, const CellSums* cells, uint32_t* counts, int ny, float row_x,
                    float row_y, const float* column_x, const float* column_y, TurnTarget& target);
 #endif
 

@@ -258,8 +258,11 @@ TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a cl
     const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
     if (!cpu_runs(level)) return;
     const ScopedSimdLevel use(level);
-    INFO("simd level " << to_string(level));
-    EgocentricGrid g(41, 37, 0.25);  // 1.25 x 4.6 m: a cell moves up to 6 cells at 0.3 rad
+    // The end of a rotation reads a row's cells 32 at a time: one word and a part of one,
+    // or two words and a part of one.
+    const int columns = GENERATE(37, 67);
+    INFO("simd level " << to_string(level) << ", " << columns << " columns");
+    EgocentricGrid g(41, columns, 0.25);  // 10.25 m long: a cell moves up to 6 cells at 0.3 rad
     std::mt19937 rng(11);
     fuse_random(g, rng, 0.3f);
     CHECK(turn_and_compare(g, 0.087, 0.1, -0.2) > 300);

@@ -74,7 +74,7 @@ private:
     int m_i_ = 0;
     std::vector<float> centre_x_m_, centre_y_m_;
     // working_ holds the map before the last rotation: stale sums, overwritten or cleared
-    // by the next one (see transform).
+    // by the next one, and counts all 0 (see transform).
     CellArray cells_, working_;
     // Scratch of transform(), allocated once.
     struct TurnScratch
@@ -86,7 +86,7 @@ private:
         std::vector<CellSums> merge_sums;
         std::vector<uint32_t> merge_counts;
         std::vector<int32_t> merge_to;
-        // Which cells hold sums, a bit a cell, (ny + 7) / 8 bytes a row: of the working map
+        // Which cells hold sums, a bit a cell, whole 32-bit words a row: of the working map
         // (held, known from the kernel when the working map was the one turned), and of the
         // map being turned (turned).
         std::vector<uint8_t> held, turned;
