@@ -45,17 +45,18 @@ inline __attribute__((always_inline)) void clear_unlanded(CellSums* working, con
                                                           const uint8_t* held, int nx, int ny)
 {
     const std::size_t row_bytes = static_cast<std::size_t>(held_row_bytes(ny));
+    const std::size_t cells = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
     for (int pr = 0; pr < nx; ++pr) {
         const std::size_t first = static_cast<std::size_t>(pr) * static_cast<std::size_t>(ny);
         const uint8_t* row = held + static_cast<std::size_t>(pr) * row_bytes;
-        const bool last_row = pr == nx - 1;
         for (int j = 0; j < ny; j += 32) {
             const uint32_t h = held_bits(row, j);
             if (h == 0) continue;
-            const uint32_t zero = !last_row || j + 32 <= ny ? ZeroBits32(counts + first + static_cast<std::size_t>(j))
-                                                           : zero_bits_scalar(counts + first + static_cast<std::size_t>(j), ny - j);
+            const std::size_t at = first + static_cast<std::size_t>(j);
+            // Near the map's end, where 32 counts would read past it, one by one.
+            const uint32_t zero = at + 32 <= cells ? ZeroBits32(counts + at) : zero_bits_scalar(counts + at, ny - j);
             for (uint32_t clear = zero & h; clear != 0; clear &= clear - 1)
-                working[first + static_cast<std::size_t>(j + __builtin_ctz(clear))] = CellSums{};
+                working[at + static_cast<std::size_t>(__builtin_ctz(clear))] = CellSums{};
         }
     }
 }

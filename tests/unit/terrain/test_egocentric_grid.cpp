@@ -277,3 +277,23 @@ TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a cl
     CHECK(turn_and_compare(g, -0.087, 0.2, 0.1) > 50);
     CHECK(turn_and_compare(g, 0.2, 0.0, -0.3) > 50);
 }
+
+// A row shorter than the 32 cells the end of a rotation reads at once: near the map's end
+// the reads would go past it (caught by the sanitizer build), so the last cells are taken
+// one by one.
+TEST_CASE("a map narrower than 16 columns turns like a wide one")
+{
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    const int columns = GENERATE(5, 9);
+    INFO("simd level " << to_string(level) << ", " << columns << " columns");
+    EgocentricGrid g(40, columns, 0.25);
+    std::mt19937 rng(5);
+    fuse_random(g, rng, 0.2f);
+    // Small turns about the strip's rear edge (the frame's origin), there and back, so that
+    // most cells stay on it.
+    int compared = 0;
+    for (const double angle : {0.005, -0.01, 0.008, -0.004}) compared += turn_and_compare(g, angle, 0.0, 0.0);
+    CHECK(compared > 40 * columns);
+}
