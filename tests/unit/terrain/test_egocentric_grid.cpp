@@ -128,6 +128,7 @@ namespace {
 struct Expected
 {
     double w = 0, wx = 0, wy = 0, wz = 0, wz2 = 0;
+    double wx2 = 0, wy2 = 0;  // sum w x^2, sum w y^2 about the new cell's centre
     uint32_t n = 0;
     bool ambiguous = false;  // a source landed within 1 mm of a cell edge: float and double may differ
 };
@@ -156,8 +157,16 @@ std::vector<Expected> expected_rotation(const EgocentricGrid& g, double angle, d
             double wz = 0, wz2 = 0;
             z_sums_about(cell, 0.0, wz, wz2);
             e.w += cell.w;
-            e.wx += cell.w * (xn - (std::floor(fx) + 0.5) * grid);
-            e.wy += cell.w * (yn - g.y_min_m() - (std::floor(fy) + 0.5) * grid);
+            const double x_rel = xn - (std::floor(fx) + 0.5) * grid;
+            const double y_rel = yn - g.y_min_m() - (std::floor(fy) + 0.5) * grid;
+            e.wx += cell.w * x_rel;
+            e.wy += cell.w * y_rel;
+            // The samples' spread about their mean turns with the frame; without the x-y
+            // covariance (not kept) the two variances mix by cos^2 and sin^2.
+            const double w_var_x = std::max(0.0, cell.x_wx2 - double(cell.x_wx) * cell.x_wx / cell.w);
+            const double w_var_y = std::max(0.0, cell.y_wy2 - double(cell.y_wy) * cell.y_wy / cell.w);
+            e.wx2 += cell.w * x_rel * x_rel + c * c * w_var_x + s * s * w_var_y;
+            e.wy2 += cell.w * y_rel * y_rel + s * s * w_var_x + c * c * w_var_y;
             e.wz += wz;
             e.wz2 += wz2;
             e.n += g.count(i, j);
@@ -219,6 +228,8 @@ int turn_and_compare(EgocentricGrid& g, double angle, double px, double py)
             CHECK(cell.w == Approx(e.w).epsilon(1e-5));
             CHECK(cell.x_wx / cell.w == Approx(e.wx / e.w).margin(1e-4));
             CHECK(cell.y_wy / cell.w == Approx(e.wy / e.w).margin(1e-4));
+            CHECK(cell.x_wx2 / cell.w == Approx(e.wx2 / e.w).margin(1e-6));
+            CHECK(cell.y_wy2 / cell.w == Approx(e.wy2 / e.w).margin(1e-6));
             double wz = 0, wz2 = 0;
             z_sums_about(cell, 0.0, wz, wz2);
             CHECK(wz / cell.w == Approx(e.wz / e.w).epsilon(1e-6));
