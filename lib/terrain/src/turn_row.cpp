@@ -13,8 +13,9 @@ namespace ugv::terrain::detail {
 // Both builds take the cells' sums across the lanes by a transpose (a cell is one row of
 // the matrix, its sums {w, x_wx, y_wy, z_wz, z_ref_m, x_wx2, y_wy2, z_wz2} the columns; the
 // AVX2 build forms only the columns the arithmetic uses), do the arithmetic of turn_sums on
-// whole vectors, transpose back and store each cell where it lands. An empty cell (w and z_ref_m NaN) computes NaN, which no comparison lets into
-// the map; the arithmetic has no branch.
+// whole vectors, transpose back and store each cell where it lands. An empty cell (w and
+// z_ref_m NaN) computes NaN, which no comparison lets into the map; the arithmetic has no
+// branch.
 
 namespace {
 
@@ -76,9 +77,9 @@ UGV_AVX2 inline void ring_cell(const TurnVectors<Float8>& k, const Float8& i, co
 
 // Eq. 9-16 on a vector of cells. r[0..7] hold the sums {w, x_wx, y_wy, z_wz, z_ref_m, x_wx2,
 // y_wy2, z_wz2}, one cell a lane (only w, x_wx, y_wy, x_wx2 and y_wy2 are read); x_wx, y_wy,
-// x_wx2 and y_wy2 are replaced by their values about the new cell's centre. Sets cell (the working cell, ring-indexed; any value where
-// the cell is not placed), the lanes placed (known, and landing in the map) and the lanes
-// known. Everything by reference: with V 8 floats wide this is inlined into AVX2 code only.
+// x_wx2 and y_wy2 are replaced by their values about the new cell's centre. Sets cell (the
+// working cell, ring-indexed; any value where the cell is not placed), the lanes placed
+// (known, and landing in the map) and the lanes known. Everything by reference: with V 8 floats wide this is inlined into AVX2 code only.
 template <class V, class I>
 inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V* r, const V& column_x,
                                                      const V& column_y, int32_t cells, I& cell, unsigned& placed,
