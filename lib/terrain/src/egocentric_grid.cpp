@@ -81,7 +81,6 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
                                   nx_f_,
                                   ny_f_,
                                   static_cast<float>(m_i_) * ny_f_,
-                                  ny_f_,
                                   nx_ * ny_};
     const detail::TurnRow turn_row = detail::turn_row_kernel();
     const float px = static_cast<float>(pivot_x_m), py = static_cast<float>(pivot_y_m);

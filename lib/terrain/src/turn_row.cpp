@@ -51,7 +51,7 @@ inline __attribute__((always_inline)) CellSums* place(CellSums* sums, uint32_t* 
 template <class V>
 struct TurnVectors
 {
-    V c_g, s_g, cc, ss, g, minus_half_g, nx, ny, row_shift_cells, row_stride, row_x, row_y;
+    V c_g, s_g, cc, ss, g, minus_half_g, nx, ny, row_shift_cells, row_x, row_y;
 };
 
 // The two steps of turn_sums that each build does its own way, with results by reference
@@ -63,14 +63,14 @@ struct TurnVectors
 inline void whole_below(const Float4& v, Float4& whole) { whole = __builtin_convertvector(truncate_to_int(v), Float4); }
 inline void ring_cell(const TurnVectors<Float4>& k, const Float4& i, const Float4& j, int32_t cells, Int4& cell)
 {
-    const Int4 c = truncate_to_int(i * k.row_stride + (j + k.row_shift_cells));
+    const Int4 c = truncate_to_int(i * k.ny + (j + k.row_shift_cells));  // a row is ny cells
     cell = c - ((c > cells - 1) & cells);  // comparison lanes are 0 or -1
 }
 #if defined(UGV_TERRAIN_HAVE_AVX2)
 UGV_AVX2 inline void whole_below(const Float8& v, Float8& whole) { whole = Float8(_mm256_floor_ps(__m256(v))); }
 UGV_AVX2 inline void ring_cell(const TurnVectors<Float8>& k, const Float8& i, const Float8& j, int32_t cells, Int8& cell)
 {
-    const __m256i c = _mm256_cvttps_epi32(__m256(i * k.row_stride + (j + k.row_shift_cells)));
+    const __m256i c = _mm256_cvttps_epi32(__m256(i * k.ny + (j + k.row_shift_cells)));  // a row is ny cells
     cell = Int8(_mm256_min_epu32(c, _mm256_sub_epi32(c, _mm256_set1_epi32(cells))));  // c - cells: above c unless c >= cells
 }
 #endif
@@ -79,7 +79,8 @@ UGV_AVX2 inline void ring_cell(const TurnVectors<Float8>& k, const Float8& i, co
 // y_wy2, z_wz2}, one cell a lane (only w, x_wx, y_wy, x_wx2 and y_wy2 are read); x_wx, y_wy,
 // x_wx2 and y_wy2 are replaced by their values about the new cell's centre. Sets cell (the
 // working cell, ring-indexed; any value where the cell is not placed), the lanes placed
-// (known, and landing in the map) and the lanes known. Everything by reference: with V 8 floats wide this is inlined into AVX2 code only.
+// (known, and landing in the map) and the lanes known. Everything by reference: with V 8
+// floats wide this is inlined into AVX2 code only.
 template <class V, class I>
 inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, V* r, const V& column_x,
                                                      const V& column_y, int32_t cells, I& cell, unsigned& placed,
@@ -158,7 +159,7 @@ void turn_row_generic(const TurnConstants& t, const CellSums* cells, uint32_t* c
 {
     const TurnVectors<Float4> k{splat(t.c_g), splat(t.s_g), splat(t.cc),  splat(t.ss),
                                 splat(t.g),   splat(t.minus_half_g), splat(t.nx), splat(t.ny),
-                                splat(t.row_shift_cells), splat(t.row_stride), splat(row_x), splat(row_y)};
+                                splat(t.row_shift_cells), splat(row_x), splat(row_y)};
     std::memset(target.known_row, 0, static_cast<std::size_t>(ny + 7) / 8);
     int j = 0;
     for (; j + 4 <= ny; j += 4)
@@ -287,7 +288,7 @@ UGV_AVX2 void turn_row_avx2(const TurnConstants& t, const CellSums* cells, uint3
 {
     const TurnVectors<Float8> k{splat8(t.c_g), splat8(t.s_g), splat8(t.cc),  splat8(t.ss),
                                 splat8(t.g),   splat8(t.minus_half_g), splat8(t.nx), splat8(t.ny),
-                                splat8(t.row_shift_cells), splat8(t.row_stride), splat8(row_x), splat8(row_y)};
+                                splat8(t.row_shift_cells), splat8(row_x), splat8(row_y)};
     int j = 0;
     for (; j + 8 <= ny; j += 8) {
         target.known_row[j / 8] = all_empty(cells + j, 8) ? 0

@@ -18,9 +18,8 @@ struct TurnConstants
 {
     float c_g, s_g, cc, ss;               // cos and sin of the angle over the grid size (1/m); cos^2, sin^2
     float g, minus_half_g;                // grid size (m), and minus half of it
-    float nx, ny;                         // rows and columns
-    float row_shift_cells;                // eq. 6: physical row = (i + m_i) mod nx; m_i times the row stride
-    float row_stride;                     // cells a row
+    float nx, ny;                         // rows and columns (a row is ny cells)
+    float row_shift_cells;                // eq. 6: physical row = (i + m_i) mod nx; m_i times ny
     int32_t cells;                        // nx * ny
 };
 

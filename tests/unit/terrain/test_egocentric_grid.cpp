@@ -203,8 +203,8 @@ void fuse_random(EgocentricGrid& g, std::mt19937& rng, float skip_share)
     }
 }
 
-// Turns g by angle about (px, py) and checks every cell against expected_rotation, with
-// each SIMD build; returns how many non-empty cells were compared.
+// Turns g by angle about (px, py) with the SIMD build in use and checks every cell against
+// expected_rotation; returns how many non-empty cells were compared.
 int turn_and_compare(EgocentricGrid& g, double angle, double px, double py)
 {
     int expected_dropped = 0;
