@@ -290,8 +290,8 @@ TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a cl
 }
 
 // A row shorter than the 32 cells the end of a rotation reads at once: near the map's end
-// the reads would go past it (caught by the sanitizer build), so the last cells are taken
-// one by one.
+// the reads would go past it (valgrind reported them before the fix), so the last cells
+// are taken one by one.
 TEST_CASE("a map narrower than 16 columns turns like a wide one")
 {
     const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
