@@ -2,11 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
 
-#include "turn_end.hpp"
-#include "turn_row.hpp"
+#include "turn_slots.hpp"
 
 namespace ugv::terrain {
+
+const CellSums EgocentricGrid::kEmptyCell{};
+
+namespace {
+
+// The rotation finds a cell's row from its index in float (turn_slots.cpp), exactly below
+// 2^22 cells; 2048 x 2048 is far beyond any map this mapper is meant for.
+std::size_t checked_cells(int nx, int ny)
+{
+    if (nx < 1 || ny < 1 || static_cast<long long>(nx) * ny > (1LL << 22))
+        throw std::invalid_argument("EgocentricGrid: " + std::to_string(nx) + " x " + std::to_string(ny) +
+                                    " cells: need 1 to 4194304 cells");
+    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+}
+
+}  // namespace
 
 EgocentricGrid::EgocentricGrid(int nx, int ny, double grid_size_m)
     : nx_(nx),
@@ -19,34 +37,89 @@ EgocentricGrid::EgocentricGrid(int nx, int ny, double grid_size_m)
       ny_f_(static_cast<float>(ny)),
       centre_x_m_(static_cast<std::size_t>(nx)),
       centre_y_m_(static_cast<std::size_t>(ny)),
-      cells_(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)),
-      working_(cells_.size())
+      pool_(checked_cells(nx, ny) + 8),  // + 8: the rotation reads whole groups of eight slots
+      home_(pool_.size(), 0),
+      free_(pool_.size() - 8),
+      slot_(pool_.size() - 8, kNoSlot),
+      working_slot_(pool_.size() - 8, kNoSlot),
+      merge_from_(pool_.size() - 8),
+      merge_into_(pool_.size() - 8),
+      placed_(pool_.size() / 8)
 {
+    static_assert(kNoSlot == detail::kNoSlot);
     for (int i = 0; i < nx; ++i) centre_x_m_[static_cast<std::size_t>(i)] = static_cast<float>((i + 0.5) * grid_m_);
     for (int j = 0; j < ny; ++j)
         centre_y_m_[static_cast<std::size_t>(j)] = static_cast<float>(y_min_m_ + (j + 0.5) * grid_m_);
-    const auto row = static_cast<std::size_t>((ny + 7) / 8 * 8);  // whole groups of eight
-    turn_.column_x.resize(row, 0.0f);
-    turn_.column_y.resize(row, 0.0f);
-    turn_.merge_sums.resize(row);
-    turn_.merge_counts.resize(row);
-    turn_.merge_to.resize(row);
-    turn_.held.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(detail::held_row_bytes(ny)), 0);
-    turn_.turned.resize(turn_.held.size(), 0);
+}
+
+uint32_t EgocentricGrid::take_slot(int cell)
+{
+    const uint32_t s = free_count_ > 0 ? free_[--free_count_] : used_++;
+    // A free slot's sums are empty, but a rotation's arithmetic may have written NaN over
+    // its zeros, and its count is any value.
+    pool_.sums(static_cast<int>(s)) = CellSums{};
+    pool_.count(static_cast<int>(s)) = 0;
+    home_[s] = static_cast<uint32_t>(cell);
+    slot_[static_cast<std::size_t>(cell)] = s;
+    return s;
+}
+
+inline void EgocentricGrid::free_slot(uint32_t s)
+{
+    pool_.sums(static_cast<int>(s)) = CellSums{};
+    free_[free_count_++] = s;
+}
+
+void EgocentricGrid::compact_if_sparse()
+{
+    if (free_count_ * 4 <= used_) return;
+    // Two ends: the lowest free slot takes the highest one in use, until they meet.
+    const uint32_t known = used_ - free_count_;
+    uint32_t low = 0, high = used_;
+    while (true) {
+        while (low < high && !pool_.sums(static_cast<int>(low)).empty()) ++low;
+        while (high > low && pool_.sums(static_cast<int>(high - 1)).empty()) --high;
+        if (low >= high) break;
+        const int from = static_cast<int>(high - 1), to = static_cast<int>(low);
+        pool_.sums(to) = pool_.sums(from);
+        pool_.count(to) = pool_.count(from);
+        home_[low] = home_[high - 1];
+        slot_[home_[low]] = low;
+        pool_.clear(high - 1, 1);
+        --high;
+    }
+    used_ = known;
+    free_count_ = 0;
 }
 
 void EgocentricGrid::clear()
 {
-    cells_.clear();
+    pool_.clear(0, used_);
+    used_ = 0;
+    free_count_ = 0;
+    std::fill(slot_.begin(), slot_.end(), kNoSlot);
     m_i_ = 0;
+}
+
+void EgocentricGrid::clear_rows(int first_unwrapped_row, int rows)
+{
+    for (int r = first_unwrapped_row; r < first_unwrapped_row + rows; ++r) {
+        const int first = physical(r, 0);
+        for (int cell = first; cell < first + ny_; ++cell) {
+            uint32_t& s = slot_[static_cast<std::size_t>(cell)];
+            if (s == kNoSlot) continue;
+            free_slot(s);
+            s = kNoSlot;
+        }
+    }
+    compact_if_sparse();
 }
 
 void EgocentricGrid::wrap_forward(int rows)
 {
     if (rows <= 0) return;
     rows = std::min(rows, nx_);
-    for (int r = 0; r < rows; ++r)
-        cells_.clear(static_cast<std::size_t>(physical(r, 0)), static_cast<std::size_t>(ny_));
+    clear_rows(0, rows);
     m_i_ = (m_i_ + rows) % nx_;
 }
 
@@ -55,74 +128,55 @@ void EgocentricGrid::wrap_backward(int rows)
     if (rows <= 0) return;
     rows = std::min(rows, nx_);
     m_i_ = ((m_i_ - rows) % nx_ + nx_) % nx_;
-    for (int r = 0; r < rows; ++r)
-        cells_.clear(static_cast<std::size_t>(physical(r, 0)), static_cast<std::size_t>(ny_));
+    clear_rows(0, rows);
 }
 
 int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y_m)
 {
-    // The working map holds the map turned last time: stale sums, never read, and counts
-    // all 0 (the kernel zeroed them as it read them then). A cell that lands where the count
-    // is still 0 overwrites the sums whole (a store, no load: the maps do not fit the L2
-    // cache, and a load there stalled the loop on every cell); one that lands on a cell
-    // already taken is merged after its row; the cells nothing landed on are made empty at
-    // the end.
-    //
     // One cos and sin per rotation: every cell turns by the same angle, so this is the
-    // trigonometric lookup of section 3.4 reduced to a single entry.
-    const float c = static_cast<float>(std::cos(angle_rad));
-    const float s = static_cast<float>(std::sin(angle_rad));
-    const detail::TurnConstants t{c * inv_g_,
-                                  s * inv_g_,
-                                  c * c,
-                                  s * s,
+    // trigonometric lookup of section 3.4 reduced to a single entry. A cell of row i and
+    // column j (unwrapped) has its centre at x = (i + 1/2) G, y = y_min + (j + 1/2) G (eq.
+    // 17-18); about the pivot and turned, over G, that is c i + s j + offset_x along the new
+    // rows and c j - s i + offset_y along the new columns (turn_slots.hpp).
+    const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+    const double u = 0.5 - pivot_x_m / grid_m_;               // (centre_x(0) - pivot_x) / G
+    const double v = 0.5 + (y_min_m_ - pivot_y_m) / grid_m_;  // (centre_y(0) - pivot_y) / G
+    const detail::TurnConstants t{static_cast<float>(c),
+                                  static_cast<float>(s),
+                                  static_cast<float>(c / grid_m_),
+                                  static_cast<float>(s / grid_m_),
+                                  static_cast<float>(c * c),
+                                  static_cast<float>(s * s),
                                   static_cast<float>(grid_m_),
-                                  -0.5f * static_cast<float>(grid_m_),
+                                  static_cast<float>(-0.5 * grid_m_),
                                   nx_f_,
                                   ny_f_,
+                                  static_cast<float>(1.0 / ny_),
+                                  static_cast<float>(m_i_),
                                   static_cast<float>(m_i_) * ny_f_,
+                                  static_cast<float>(c * u + s * v),
+                                  static_cast<float>(c * v - s * u - y_min_m_ / grid_m_),
                                   nx_ * ny_};
-    const detail::TurnRow turn_row = detail::turn_row_kernel();
-    const float px = static_cast<float>(pivot_x_m), py = static_cast<float>(pivot_y_m);
-    // A cell at (x, y) from the pivot turns to the new row and column (in cells)
-    //   f_x = (c x + s y) / g,  f_y = (c y - s x - y_min) / g,
-    // with x = row's centre + x_re and y = column's centre + y_re: the centres' parts are
-    // one number per row and one per column.
-    float* column_x = turn_.column_x.data();
-    float* column_y = turn_.column_y.data();
-    for (int j = 0; j < ny_; ++j) {
-        const float y = centre_y_m_[static_cast<std::size_t>(j)] - py;
-        column_x[j] = s * y * inv_g_;
-        column_y[j] = (c * y - y_min_f_) * inv_g_;
+    // The working index grid starts with no cell taken. (The merge and drop lists have room for
+    // every slot.)
+    std::fill(working_slot_.begin(), working_slot_.end(), kNoSlot);
+    // The kernel empties the slots of the cells it turns out of the map and lists them free.
+    detail::TurnTarget target{working_slot_.data(), placed_.data(), free_.data() + free_count_};
+    detail::turn_slots_kernel()(t, pool_.sums_data(), home_.data(), used_, target);
+    const int merges = detail::find_merges_kernel()(working_slot_.data(), home_.data(), placed_.data(), used_,
+                                                    merge_from_.data(), merge_into_.data());
+    slot_.swap(working_slot_);
+    // The cells that landed on a cell already taken (~1 % of a full map's at 5 deg) pool
+    // their sums and counts with it; they and those turned out of the map leave free slots.
+    for (int m = 0; m < merges; ++m) {
+        const int into = static_cast<int>(merge_into_[static_cast<std::size_t>(m)]);
+        const uint32_t from = merge_from_[static_cast<std::size_t>(m)];
+        pool_.add(into, pool_.sums(static_cast<int>(from)), pool_.count(static_cast<int>(from)));
+        free_slot(from);
     }
-    CellSums* working = working_.sums_data();
-    uint32_t* taken = working_.counts_data();
-    const auto row_bytes = static_cast<std::size_t>(detail::held_row_bytes(ny_));
-    detail::TurnTarget target{working,
-                              taken,
-                              turn_.merge_sums.data(),
-                              turn_.merge_counts.data(),
-                              turn_.merge_to.data()};
-    for (int pr = 0; pr < nx_; ++pr) {
-        int i = pr - m_i_;
-        if (i < 0) i += nx_;
-        const int first = pr * ny_;
-        const float x = centre_x_m_[static_cast<std::size_t>(i)] - px;
-        target.known_row = turn_.turned.data() + static_cast<std::size_t>(pr) * row_bytes;
-        turn_row(t, &cells_.sums(first), &cells_.count(first), ny_, c * x * inv_g_, s * x * inv_g_, column_x, column_y,
-                 target);
-        for (int m = 0; m < target.merges; ++m)  // ~1 % of the cells at 5 deg
-            working_.add(target.merge_to[m], target.merge_sums[m], target.merge_counts[m]);
-        target.merges = 0;
-    }
-    // The cells nothing landed on (count 0) still hold the sums of the map turned last time
-    // where that map held sums (its known bits, kept from then): most of the cells nothing
-    // lands on are unknown ground that was unknown then too, and need no write, and the
-    // sums, out of the cache by now, are not read to find out.
-    detail::clear_unlanded_kernel()(working, taken, turn_.held.data(), nx_, ny_);
-    turn_.held.swap(turn_.turned);  // the map just turned is the next working map
-    cells_.swap(working_);
-    return target.turned_out;
+    free_count_ += static_cast<uint32_t>(target.drops);
+    compact_if_sparse();
+    return target.drops;
 }
 
 }  // namespace ugv::terrain

@@ -216,10 +216,10 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
     const float z_f = static_cast<float>(z);
     for (int a = 0; a < fx.count; ++a) {
         for (int b = 0; b < fy.count; ++b) {
-            const int cell = grid.physical(fx.first + a, fy.first + b);
+            const uint32_t at = grid.storage_of(grid.physical(fx.first + a, fy.first + b));
             alignas(16) float sample[4];
             detail::store4(sample, detail::Float4{0.0f, fx.centre[a] * g, fy.centre[b] * g, z_f});
-            detail::fuse_point_into(sums[cell], counts[cell], sample, w * fx.fraction[a] * fy.fraction[b]);
+            detail::fuse_point_into(sums[at], counts[at], sample, w * fx.fraction[a] * fy.fraction[b]);
         }
     }
     ++counters_.points_fused;
@@ -322,8 +322,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             int rare[kChunk];
             std::size_t rare_count = 0;
             auto add = [&](std::size_t q) {
-                const int c = placed.cell[q];
-                detail::fuse_point_into(sums[c], counts[c], placed.sample[q], placed.weight[q]);
+                const uint32_t at = grid.storage_of(placed.cell[q]);
+                detail::fuse_point_into(sums[at], counts[at], placed.sample[q], placed.weight[q]);
             };
             auto add_or_defer = [&](std::size_t q) {
                 if (placed.fuse[q]) [[likely]]

@@ -134,7 +134,7 @@ EgocentricGrid full_grid(double known_radius_m = 0.0)
     return g;
 }
 
-// One rotation by theta_d (5 deg) of `map` into the working map (eq. 9-16), from a fresh copy each time.
+// One rotation by theta_d (5 deg) of `map` (eq. 9-16), from a fresh copy each time.
 void rotate_each_iteration(benchmark::State& state, const EgocentricGrid& map)
 {
     EgocentricGrid g = map;
@@ -205,8 +205,8 @@ long resident_kb()
     return -1;
 }
 
-// Resident memory of a 150x150 egocentric mapper, filled and rotated once (both grids
-// touched), and of the snapshot it publishes. Reported as counters, in MB.
+// Resident memory of a 150x150 egocentric mapper, filled and rotated once (both index
+// grids touched), and of the snapshot it publishes. Reported as counters, in MB.
 void BM_ResidentMemory150(benchmark::State& state)
 {
     for (auto _ : state) {
@@ -215,7 +215,7 @@ void BM_ResidentMemory150(benchmark::State& state)
         mapper.add_pose(pose_at(0, 0.0, 0.0, 0.2));
         Scan scan(10.0 * M_PI / 180.0);
         for (int k = 0; k < 100; ++k) mapper.fuse(scan.batch(0));
-        mapper.add_pose(pose_at(100'000, 0.0, 0.1, 0.2));  // one rotation: the working map is touched
+        mapper.add_pose(pose_at(100'000, 0.0, 0.1, 0.2));  // one rotation: the working index grid is touched
         MapSnapshot snapshot;
         mapper.snapshot(snapshot);
         const long after_kb = resident_kb();

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "ugv/terrain/egocentric_grid.hpp"
@@ -61,6 +63,85 @@ TEST_CASE("wrap_forward clears the rows left behind and re-indexes the rest (eq.
     CHECK(g.at(0, 2).empty());
     CHECK(g.at(1, 2).empty());
     CHECK(mean_z(g.at(2, 2)) == Approx(3.0));
+}
+
+// The known cells' sums live in a pool (egocentric_grid.hpp): slots freed by wraps are
+// reused, and once a quarter of them are free the pool is compacted. Whatever the slots
+// do, each cell must read back exactly what was fused into it, as a plain array of sums
+// fused the same way gives.
+TEST_CASE("the pool of known cells gives each cell its own sums through fusion, wraps, compaction and clear")
+{
+    EgocentricGrid g(30, 20, 0.5);
+    std::vector<CellSums> plain(600);
+    std::vector<uint32_t> plain_n(600, 0);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto fuse_some = [&](int samples) {
+        for (int k = 0; k < samples; ++k) {
+            const float x = 15.0f * unit(rng), y = -5.0f + 10.0f * unit(rng);
+            float xr = 0, yr = 0;
+            const int cell = g.locate(x, y, xr, yr);
+            if (cell < 0) continue;
+            const double z = 100.0 + unit(rng);
+            const float w = 1.0f + 9.0f * unit(rng);
+            g.fuse(cell, xr, yr, z, w);
+            fuse_sample(plain[static_cast<std::size_t>(cell)], xr, yr, z, w);
+            ++plain_n[static_cast<std::size_t>(cell)];
+        }
+    };
+    // Rows (unwrapped) first .. first + rows - 1 of the plain array made empty, as a wrap does.
+    const auto clear_plain = [&](int first, int rows) {
+        for (int i = first; i < first + rows; ++i)
+            for (int j = 0; j < 20; ++j) {
+                plain[static_cast<std::size_t>(g.physical(i, j))] = CellSums{};
+                plain_n[static_cast<std::size_t>(g.physical(i, j))] = 0;
+            }
+    };
+    const auto check_all = [&]() {
+        int known = 0;
+        for (int cell = 0; cell < 600; ++cell) {
+            const CellSums& a = g.at(cell);
+            const CellSums& b = plain[static_cast<std::size_t>(cell)];
+            INFO("cell " << cell);
+            REQUIRE(a.empty() == b.empty());
+            CHECK(g.count(cell) == plain_n[static_cast<std::size_t>(cell)]);
+            if (b.empty()) continue;
+            ++known;
+            CHECK(a.w == b.w);
+            CHECK(a.x_wx == b.x_wx);
+            CHECK(a.y_wy2 == b.y_wy2);
+            CHECK(a.z_ref_m == b.z_ref_m);
+            CHECK(a.z_wz2 == b.z_wz2);
+        }
+        CHECK(g.known_cells() == known);
+    };
+    fuse_some(1500);
+    check_all();
+    clear_plain(0, 4);
+    g.wrap_forward(4);  // 80 slots freed: fewer than a quarter, so they stay free in place
+    check_all();
+    fuse_some(300);  // new cells take the freed slots
+    check_all();
+    g.wrap_backward(3);  // the far rows cleared
+    clear_plain(0, 3);
+    check_all();
+    clear_plain(0, 12);
+    g.wrap_forward(12);  // over a quarter free: the pool is compacted
+    check_all();
+    fuse_some(800);
+    check_all();
+    g.clear();
+    for (auto& c : plain) c = CellSums{};
+    std::fill(plain_n.begin(), plain_n.end(), 0u);
+    check_all();
+    fuse_some(200);
+    check_all();
+}
+
+TEST_CASE("a grid too large for the rotation's index arithmetic is refused")
+{
+    CHECK_THROWS_WITH(EgocentricGrid(4096, 2048, 0.2), Catch::Contains("4096 x 2048 cells"));
+    CHECK_THROWS_AS(EgocentricGrid(0, 10, 0.2), std::invalid_argument);
 }
 
 TEST_CASE("transform by 90 deg moves a cell's content to where the world point now is")
@@ -261,16 +342,13 @@ TEST_CASE("transform pools every cell where its samples land, rotation after rot
     for (const auto& turn : turns) CHECK(turn_and_compare(g, turn[0], turn[1], turn[2]) > 300);
 }
 
-// The working map keeps the map turned last time; which of its cells still hold sums is
-// known from that turn, not read. Wraps, new samples and a clear of the current map in
-// between must not let old sums back in.
+// Between rotations, wraps free slots of the pool, new samples take free slots or new ones,
+// and a clear empties it: each rotation must still find every known cell, and only those.
 TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a clear come between rotations")
 {
     const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
     if (!cpu_runs(level)) return;
     const ScopedSimdLevel use(level);
-    // The end of a rotation reads a row's cells 32 at a time: one word and a part of one,
-    // or two words and a part of one.
     const int columns = GENERATE(37, 67);
     INFO("simd level " << to_string(level) << ", " << columns << " columns");
     EgocentricGrid g(41, columns, 0.25);  // 10.25 m long: a cell moves up to 6 cells at 0.3 rad
@@ -289,9 +367,8 @@ TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a cl
     CHECK(turn_and_compare(g, 0.2, 0.0, -0.3) > 50);
 }
 
-// A row shorter than the 32 cells the end of a rotation reads at once: near the map's end
-// the reads would go past it (valgrind reported them before the fix), so the last cells
-// are taken one by one.
+// A row shorter than a group of cells the rotation turns at once: a cell's row and column
+// come from its index, which must hold for any row length.
 TEST_CASE("a map narrower than 16 columns turns like a wide one")
 {
     const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);

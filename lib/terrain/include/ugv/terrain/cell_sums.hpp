@@ -66,8 +66,8 @@ inline void fuse_sample(CellSums& c, float x_rel_m, float y_rel_m, double z_m, f
     c.z_wz2 += wz * dz;
 }
 
-// Adds every sum of b into a, b's z sums re-expressed about a's reference height (the
-// working map of the rotation, eq. 9-16).
+// Adds every sum of b into a, b's z sums re-expressed about a's reference height (cells
+// that land in the same cell in a rotation, eq. 9-16).
 void add_sums(CellSums& a, const CellSums& b);
 
 // Moves the cell's reference height to its weighted mean (the z sums are re-expressed in

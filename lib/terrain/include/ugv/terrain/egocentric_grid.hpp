@@ -3,6 +3,12 @@
 // covers y in [y_min + j G, y_min + (j+1) G) with y_min = -ny G / 2 (centred, DESIGN §7).
 // Rows are stored as a ring: unwrapped row i lives in physical row (i + m_i) mod nx
 // (eq. 5-6), so a forward wrap is an index update plus clearing the rows left behind.
+//
+// The sums of the known cells live in a pool, in no particular order; each cell holds the
+// index of its sums there (its slot) or kNoSlot while it is empty.
+// A rotation (eq. 9-16) then works on the pool in order, re-expressing each cell's sums
+// where they are, and moves only the 4-byte slots into the working index grid: the cells'
+// 32 bytes of sums never move, and unknown ground costs nothing.
 #pragma once
 
 #include <cstdint>
@@ -42,12 +48,33 @@ public:
         const int r = i + m_i_;
         return (r - nx_ * (r >= nx_)) * ny_ + j;
     }
-    const CellSums& at(int cell) const { return cells_.sums(cell); }
+    // An empty cell's sums are those of CellSums{} (and its count 0).
+    const CellSums& at(int cell) const
+    {
+        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
+        return s == kNoSlot ? kEmptyCell : pool_.sums(static_cast<int>(s));
+    }
     const CellSums& at(int i, int j) const { return at(physical(i, j)); }
-    uint32_t count(int cell) const { return cells_.count(cell); }
+    uint32_t count(int cell) const
+    {
+        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
+        return s == kNoSlot ? 0u : pool_.count(static_cast<int>(s));
+    }
     uint32_t count(int i, int j) const { return count(physical(i, j)); }
-    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
-    CellArray& cells() { return cells_; }
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
+    {
+        pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w);
+    }
+    // For the fusion loop: where in cells() the cell's sums and count are, given a slot if
+    // it had none. The pool does not grow, so pointers into cells() stay valid.
+    uint32_t storage_of(int cell)
+    {
+        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
+        return s != kNoSlot ? s : take_slot(cell);
+    }
+    CellArray& cells() { return pool_; }
+    // The number of known cells (the pool's slots in use).
+    int known_cells() const { return static_cast<int>(used_ - free_count_); }
     // Eq. 17-18: the cell centres, precomputed.
     float centre_x_m(int i) const { return centre_x_m_[static_cast<std::size_t>(i)]; }
     float centre_y_m(int j) const { return centre_y_m_[static_cast<std::size_t>(j)]; }
@@ -68,29 +95,39 @@ public:
     void clear();
 
 private:
+    static constexpr uint32_t kNoSlot = 0xffffffffu;
+    static const CellSums kEmptyCell;
+
+    uint32_t take_slot(int cell);
+    // Empties slot s and lists it free. Does not touch the index of the cell it belonged to.
+    void free_slot(uint32_t s);
+    // Moves the last slots in use into the free ones below them, once a quarter of the slots
+    // below used_ are free (the rotation works on all of them).
+    void compact_if_sparse();
+    void clear_rows(int first_unwrapped_row, int rows);
+
     int nx_, ny_;
     double grid_m_, y_min_m_;
     float inv_g_, y_min_f_, nx_f_, ny_f_;
     int m_i_ = 0;
     std::vector<float> centre_x_m_, centre_y_m_;
-    // working_ holds the map before the last rotation: stale sums, overwritten or cleared
-    // by the next one, and counts all 0 (see transform).
-    CellArray cells_, working_;
-    // Scratch of transform(), allocated once.
-    struct TurnScratch
-    {
-        // Per column j, in cells: the part of a turned cell's new row and column that comes
-        // from its column's centre (see transform).
-        std::vector<float> column_x, column_y;
-        // Cells of one row that landed on a cell already written: merged after the row.
-        std::vector<CellSums> merge_sums;
-        std::vector<uint32_t> merge_counts;
-        std::vector<int32_t> merge_to;
-        // Which cells hold sums, a bit a cell, whole 32-bit words a row: of the working map
-        // (held, known from the kernel when the working map was the one turned), and of the
-        // map being turned (turned).
-        std::vector<uint8_t> held, turned;
-    } turn_;
+    // The pool: slots 0 .. used_ - 1 hold the known cells' sums and counts, in no particular
+    // order, and free slots (empty sums, any count: the first free_count_ of free_ list them);
+    // every slot from used_ on is empty and free, with 8 more than the cells so that the
+    // rotation reads whole groups of eight. home_[s] is the cell whose sums slot s holds
+    // (a physical index; any value in a free slot).
+    CellArray pool_;
+    std::vector<uint32_t> home_;
+    uint32_t used_ = 0;
+    std::vector<uint32_t> free_;
+    uint32_t free_count_ = 0;
+    // Per physical cell: its slot, or kNoSlot. working_slot_ is the index grid a rotation
+    // fills; between rotations it holds nothing of use.
+    std::vector<uint32_t> slot_, working_slot_;
+    // Scratch of transform(), allocated once: the slots that landed on a cell already
+    // taken (merged into its slot, then freed), and a bit a slot for those placed.
+    std::vector<uint32_t> merge_from_, merge_into_;
+    std::vector<uint8_t> placed_;
 };
 
 }  // namespace ugv::terrain

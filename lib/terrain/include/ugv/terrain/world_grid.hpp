@@ -56,6 +56,8 @@ public:
     uint32_t count(int cell) const { return cells_.count(cell); }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
     CellArray& cells() { return cells_; }
+    // Where in cells() the cell's sums and count are (the same index: see EgocentricGrid).
+    uint32_t storage_of(int cell) const { return static_cast<uint32_t>(cell); }
     // The cell holding ENU position p (m), or -1 outside the window.
     int cell_at(const Eigen::Vector2d& p_m) const;
 
