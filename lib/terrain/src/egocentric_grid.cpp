@@ -157,10 +157,10 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
                                   static_cast<float>(c * u + s * v),
                                   static_cast<float>(c * v - s * u - y_min_m_ / grid_m_),
                                   nx_ * ny_};
-    // The working index grid starts with no cell taken. (The merge and drop lists have room for
-    // every slot.)
+    // The working index grid starts with no cell taken.
     std::fill(working_slot_.begin(), working_slot_.end(), kNoSlot);
-    // The kernel empties the slots of the cells it turns out of the map and lists them free.
+    // The kernel empties the slots of the cells it turns out of the map and lists them free
+    // (free_ has room for every slot, and so have the merge lists).
     detail::TurnTarget target{working_slot_.data(), placed_.data(), free_.data() + free_count_};
     detail::turn_slots_kernel()(t, pool_.sums_data(), home_.data(), used_, target);
     const int merges = detail::find_merges_kernel()(working_slot_.data(), home_.data(), placed_.data(), used_,
