@@ -166,15 +166,17 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     const int merges = detail::find_merges_kernel()(working_slot_.data(), home_.data(), placed_.data(), used_,
                                                     merge_from_.data(), merge_into_.data());
     slot_.swap(working_slot_);
+    // The kernel listed the dropped slots after the free ones: count them in before the
+    // merges list theirs.
+    free_count_ += static_cast<uint32_t>(target.drops);
     // The cells that landed on a cell already taken (~1 % of a full map's at 5 deg) pool
-    // their sums and counts with it; they and those turned out of the map leave free slots.
+    // their sums and counts with it and leave free slots.
     for (int m = 0; m < merges; ++m) {
         const int into = static_cast<int>(merge_into_[static_cast<std::size_t>(m)]);
         const uint32_t from = merge_from_[static_cast<std::size_t>(m)];
         pool_.add(into, pool_.sums(static_cast<int>(from)), pool_.count(static_cast<int>(from)));
         free_slot(from);
     }
-    free_count_ += static_cast<uint32_t>(target.drops);
     compact_if_sparse();
     return target.drops;
 }

@@ -342,6 +342,60 @@ TEST_CASE("transform pools every cell where its samples land, rotation after rot
     for (const auto& turn : turns) CHECK(turn_and_compare(g, turn[0], turn[1], turn[2]) > 300);
 }
 
+// A rotation frees slots twice over: those of the cells turned out of the map and those of
+// the cells merged into another. New cells then take them: none may take a slot still in
+// use, and none may be lost.
+TEST_CASE("after a rotation that drops and merges cells, new cells take only free slots")
+{
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    INFO("simd level " << to_string(level));
+    EgocentricGrid g(41, 37, 0.25);
+    std::mt19937 rng(13);
+    fuse_random(g, rng, 0.3f);
+    // A small turn: fewer slots freed than would make the pool compact itself (a quarter).
+    const int known_before = g.known_cells();
+    const int dropped = g.transform(0.087, 0.1, -0.2);
+    const int known_after = g.known_cells();
+    REQUIRE(dropped > 10);
+    REQUIRE(known_before - dropped - known_after > 5);  // merged into another cell
+    REQUIRE((known_before - known_after) * 4 < known_before);
+    std::vector<CellSums> kept(static_cast<std::size_t>(41 * 37));
+    std::vector<uint32_t> kept_n(kept.size());
+    int known = 0;
+    for (int cell = 0; cell < 41 * 37; ++cell) {
+        kept[static_cast<std::size_t>(cell)] = g.at(cell);
+        kept_n[static_cast<std::size_t>(cell)] = g.count(cell);
+        known += g.at(cell).empty() ? 0 : 1;
+    }
+    CHECK(known == known_after);
+    // One sample into every empty cell: they take the freed slots, then new ones.
+    int added = 0;
+    for (int cell = 0; cell < 41 * 37; ++cell) {
+        if (!kept[static_cast<std::size_t>(cell)].empty()) continue;
+        g.fuse(cell, 0.01f, -0.02f, 50.0 + 0.01 * cell, 2.0f);  // a height of its own
+        ++added;
+    }
+    REQUIRE(added > known_before - known_after);
+    CHECK(g.known_cells() == known_after + added);
+    for (int cell = 0; cell < 41 * 37; ++cell) {
+        INFO("cell " << cell);
+        const CellSums& now = g.at(cell);
+        if (kept[static_cast<std::size_t>(cell)].empty()) {
+            CHECK(g.count(cell) == 1);
+            CHECK(now.w == 2.0f);
+            CHECK(now.z_ref_m == static_cast<float>(50.0 + 0.01 * cell));
+            continue;
+        }
+        CHECK(g.count(cell) == kept_n[static_cast<std::size_t>(cell)]);
+        CHECK(now.w == kept[static_cast<std::size_t>(cell)].w);
+        CHECK(now.x_wx == kept[static_cast<std::size_t>(cell)].x_wx);
+        CHECK(now.z_ref_m == kept[static_cast<std::size_t>(cell)].z_ref_m);
+        CHECK(now.z_wz2 == kept[static_cast<std::size_t>(cell)].z_wz2);
+    }
+}
+
 // Between rotations, wraps free slots of the pool, new samples take free slots or new ones,
 // and a clear empties it: each rotation must still find every known cell, and only those.
 TEST_CASE("the cells nothing lands on are empty when wraps, new samples and a clear come between rotations")
