@@ -44,7 +44,7 @@ function(ugv_add_test)
   endif()
 endfunction()
 
-# ugv_add_daemon(NAME ugv-xyz SOURCES main.cpp ... LIBS ...): an installed program in bin/.
+# ugv_add_program(NAME ugv-xyz SOURCES main.cpp ... LIBS ...): an installed program in bin/.
 function(ugv_add_program)
   cmake_parse_arguments(P "" "NAME" "SOURCES;LIBS" ${ARGN})
   add_executable(${P_NAME} ${P_SOURCES})
@@ -93,4 +93,26 @@ function(ugv_add_fuzzer)
     add_custom_target(fuzz_all)
   endif()
   add_dependencies(fuzz_all ${F_NAME})
+endfunction()
+
+# ugv_add_daemon(NAME xyz [SOURCES more.cpp ...] LIBS ...)
+# A daemon made from the template (docs/ARCHITECTURE.md): daemons/xyz/ holds main.cpp and
+# xyz_config, xyz_node and xyz_messages (.hpp and .cpp). Everything but main.cpp is the
+# library ugv_xyz_node, which the daemon's tests and benchmarks link; ugv-xyz is main.cpp.
+function(ugv_add_daemon)
+  cmake_parse_arguments(D "" "NAME" "SOURCES;LIBS" ${ARGN})
+  set(parts main.cpp)
+  foreach(part config node messages)
+    list(APPEND parts ${D_NAME}_${part}.hpp ${D_NAME}_${part}.cpp)
+  endforeach()
+  foreach(file ${parts})
+    if(NOT EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${file})
+      message(FATAL_ERROR "daemons/${D_NAME}: ${file} is missing (the daemon template, docs/ARCHITECTURE.md)")
+    endif()
+  endforeach()
+  add_library(ugv_${D_NAME}_node STATIC
+    ${D_NAME}_config.cpp ${D_NAME}_node.cpp ${D_NAME}_messages.cpp ${D_SOURCES})
+  target_include_directories(ugv_${D_NAME}_node PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(ugv_${D_NAME}_node PUBLIC ugv_daemon ugv_lcmtypes ${D_LIBS} PRIVATE ugv_warnings)
+  ugv_add_program(NAME ugv-${D_NAME} SOURCES main.cpp LIBS ugv_${D_NAME}_node)
 endfunction()

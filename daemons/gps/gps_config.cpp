@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 namespace {
 
 constexpr double kSilencePeriods = 5.0;  // "a few expected periods" of the fastest log
@@ -51,7 +51,7 @@ novatel::LogRequest parse_log_entry(const std::string& entry, double default_per
     return r;
 }
 
-GpsConfig read_gps_config(runtime::Config& config)
+GpsConfig read_config(runtime::Config& config)
 {
     GpsConfig c;
     c.device = config.get_string("device", c.device);
@@ -94,4 +94,4 @@ GpsConfig read_gps_config(runtime::Config& config)
     return c;
 }
 
-}  // namespace ugv::gps
+}  // namespace ugv::gps_daemon

@@ -8,7 +8,7 @@
 #include "ugv/novatel/session.hpp"
 #include "ugv/runtime/config.hpp"
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 
 enum class Protocol { automatic, novatel, nmea };
 
@@ -32,10 +32,10 @@ struct GpsConfig
 };
 
 // Reads and validates every key (throws runtime::ConfigError, the daemon exits 2).
-GpsConfig read_gps_config(runtime::Config& config);
+GpsConfig read_config(runtime::Config& config);
 
 // "BESTPOSB" or "BESTPOSB 0.25" -> request; default_period_s when no period is given.
 // Throws std::invalid_argument with the reason.
 novatel::LogRequest parse_log_entry(const std::string& entry, double default_period_s);
 
-}  // namespace ugv::gps
+}  // namespace ugv::gps_daemon

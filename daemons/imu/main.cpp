@@ -1,11 +1,8 @@
 // ugv-imu: MicroStrain 3DM-GX1 -> imu_t on IMU (body FLU -> world ENU). config -> the
 // microstrain_gx1 session on a device thread, which publishes; the main thread runs the
 // daemon's status and signals. Keys and behaviour: docs/imu.md.
-#include <thread>
-
-#include "device_loop.hpp"
 #include "imu_config.hpp"
-#include "ugv/daemon/daemon.hpp"
+#include "imu_node.hpp"
 
 int main(int argc, char** argv)
 {
@@ -13,12 +10,5 @@ int main(int argc, char** argv)
                           argc, argv);
     const ugv::imu_daemon::ImuConfig config = ugv::imu_daemon::read_config(d.config());
     d.start();
-
-    ugv::imu_daemon::DeviceLoop loop(d, config);  // registers the device counters first
-
-    std::thread device([&loop] { loop.run(); });
-    const int rc = d.run();
-    d.request_stop();
-    device.join();
-    return rc;
+    return ugv::imu_daemon::run(d, config);
 }

@@ -2,24 +2,14 @@
 
 #include <algorithm>
 
+#include <spdlog/spdlog.h>
+
+#include "nodscan_messages.hpp"
+#include "ugv/bus/typed.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/runtime/counters.hpp"
+
 namespace ugv::nodscan_daemon {
-namespace {
-
-nodscan::ScanView view_of(const laser_scan_t& s)
-{
-    nodscan::ScanView v;
-    v.utime = s.utime;
-    v.angle_min = s.angle_min;
-    v.angle_increment = s.angle_increment;
-    v.time_increment = s.time_increment;
-    v.range_max = s.range_max;
-    v.ranges = s.ranges.data();
-    v.n = std::min<std::size_t>(s.ranges.size(), static_cast<std::size_t>(std::max(0, s.nranges)));
-    return v;
-}
-
-}  // namespace
-
 NodscanNode::NodscanNode(const NodscanConfig& config, Publish publish)
     : config_(config), publish_(std::move(publish)), servo_(config.servo_history_us), assembler_(config.assembler)
 {
@@ -56,7 +46,7 @@ void NodscanNode::process_ready()
 {
     while (!pending_.empty()) {
         const laser_scan_t& scan = pending_.front();
-        const int64_t last_beam = nodscan::ScanAssembler::last_beam_utime(view_of(scan));
+        const int64_t last_beam = nodscan::ScanAssembler::last_beam_utime(to_scan_view(scan));
         const bool bracketed = servo_.newest_utime() >= last_beam;
         const bool waited_enough = newest_message_utime_ > last_beam + config_.max_wait_us;
         if (!bracketed && !waited_enough) break;
@@ -68,7 +58,7 @@ void NodscanNode::process_ready()
 void NodscanNode::flush_older_than(int64_t message_utime)
 {
     while (!pending_.empty() &&
-           nodscan::ScanAssembler::last_beam_utime(view_of(pending_.front())) < message_utime) {
+           nodscan::ScanAssembler::last_beam_utime(to_scan_view(pending_.front())) < message_utime) {
         assemble(pending_.front());
         pending_.pop_front();
     }
@@ -84,28 +74,45 @@ void NodscanNode::flush_all()
 
 void NodscanNode::assemble(const laser_scan_t& scan)
 {
-    const auto st = assembler_.assemble(view_of(scan), servo_, cloud_);
+    const auto st = assembler_.assemble(to_scan_view(scan), servo_, cloud_);
     counters_.dropped_invalid += st.dropped_invalid;
     counters_.dropped_no_angle += st.dropped_no_angle;
     if (st.points == 0 && st.dropped_no_angle > 0) {
         ++counters_.scans_without_servo;
         return;
     }
-    point_cloud_t out;
-    out.utime = cloud_.utime;
-    out.seq = seq_++;
-    out.sensor_id = scan.sensor_id;
-    for (std::size_t i = 0; i < 3; ++i) out.sensor_origin[i] = cloud_.sensor_origin[i];
-    out.npoints = static_cast<int32_t>(cloud_.size());
-    out.x = cloud_.x;
-    out.y = cloud_.y;
-    out.z = cloud_.z;
-    out.range = cloud_.range;
-    out.variance = cloud_.variance;
-    out.time_offset = cloud_.time_offset;
     ++counters_.scans_out;
     counters_.points_out += st.points;
-    publish_(out);
+    publish_(to_message(cloud_, scan.sensor_id, seq_++));
+}
+
+int run(daemon::Daemon& d, const NodscanConfig& config)
+{
+    NodscanNode node(config, [&d, &config](const point_cloud_t& msg) {
+        bus::publish(d.out(), config.channel, msg);
+        d.mark_alive();
+        d.ready();
+    });
+    const auto sync_counters = [&] { runtime::set_all(d.counters(), node.counters()); };
+    sync_counters();  // every counter is listed from the first status message on
+    bus::subscribe<servo_state_t>(d.bus(), config.servo_channel,
+                                  [&](const std::string&, const servo_state_t& m, int64_t) {
+                                      node.on_servo(m);
+                                      sync_counters();
+                                  });
+    bus::subscribe<laser_scan_t>(d.bus(), config.scan_channel, [&](const std::string&, const laser_scan_t& m, int64_t) {
+        node.on_scan(m);
+        sync_counters();
+    });
+    if (!d.replaying()) {
+        // Live: a scan whose servo stream stalled is not held longer than max_wait of wall time.
+        d.add_timer(config.max_wait_us > 0 ? config.max_wait_us : 10'000, [&] {
+            node.flush_older_than(io::now_utime() - config.max_wait_us);
+            sync_counters();
+        });
+    }
+    spdlog::info("assembling {} + {} -> {}", config.scan_channel, config.servo_channel, config.channel);
+    return d.run();
 }
 
 }  // namespace ugv::nodscan_daemon

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "nodscan_config.hpp"
+#include "ugv/daemon/daemon.hpp"
 #include "ugv/laser_scan_t.hpp"
 #include "ugv/nodscan/scan_assembler.hpp"
 #include "ugv/point_cloud_t.hpp"
@@ -27,6 +28,20 @@ struct NodscanCounters
     uint64_t scans_overflow = 0;      // pending scans pushed out by newer ones
     uint64_t servo_rejected = 0;      // out of order or non-finite servo samples
     uint64_t scans_other_sensor = 0;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("scans_in", scans_in);
+        f("scans_out", scans_out);
+        f("points_out", points_out);
+        f("dropped_invalid", dropped_invalid);
+        f("dropped_no_angle", dropped_no_angle);
+        f("scans_without_servo", scans_without_servo);
+        f("scans_overflow", scans_overflow);
+        f("servo_rejected", servo_rejected);
+        f("scans_other_sensor", scans_other_sensor);
+    }
 };
 
 class NodscanNode
@@ -59,5 +74,8 @@ private:
     int64_t seq_ = 0;
     NodscanCounters counters_;
 };
+
+// The daemon: a NodscanNode on the bus until a stop signal, or the end of the --replay log.
+int run(daemon::Daemon& d, const NodscanConfig& config);
 
 }  // namespace ugv::nodscan_daemon

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 
 NodController::NodController(NodControllerOptions options) : options_(options) {}
 
@@ -41,4 +41,4 @@ NodController::Output NodController::update(double t_s, double current) const
     return o;
 }
 
-}  // namespace ugv::servo
+}  // namespace ugv::servo_daemon

@@ -11,7 +11,7 @@
 #include "ugv/canopen/drive.hpp"
 #include "ugv/nodscan/nod_profile.hpp"
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 
 struct NodControllerOptions
 {
@@ -54,4 +54,4 @@ private:
     bool started_ = false;
 };
 
-}  // namespace ugv::servo
+}  // namespace ugv::servo_daemon

@@ -4,7 +4,7 @@
 
 #include "ugv/io/can_transport.hpp"
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 }
@@ -75,4 +75,4 @@ ServoConfig read_config(runtime::Config& cfg)
     return c;
 }
 
-}  // namespace ugv::servo
+}  // namespace ugv::servo_daemon

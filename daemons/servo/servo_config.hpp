@@ -8,7 +8,7 @@
 #include "ugv/nodscan/nod_profile.hpp"
 #include "ugv/runtime/config.hpp"
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 
 struct ServoConfig
 {
@@ -22,11 +22,11 @@ struct ServoConfig
     int64_t control_period_us = 10'000;  // the drive's TPDO period: a set-point per status
     // 0: wake for every frame as it arrives. N: once the drive runs, read the bus on the
     // control tick, and wake for arriving frames only during a window of 5 TPDO periods
-    // every N ms, to time the TPDO clock (ServoApp::want_frame_wakeups).
+    // every N ms, to time the TPDO clock (ServoNode::want_frame_wakeups).
     int64_t frame_wakeup_period_us = 500'000;
     double shutdown_timeout_s = 0.8;
 };
 
 ServoConfig read_config(runtime::Config& cfg);
 
-}  // namespace ugv::servo
+}  // namespace ugv::servo_daemon

@@ -5,9 +5,9 @@
 
 namespace ugv::terrain_daemon {
 
-TerrainDaemonConfig read_config(runtime::Config& cfg)
+TerrainConfig read_config(runtime::Config& cfg)
 {
-    TerrainDaemonConfig c;
+    TerrainConfig c;
     c.points_channel = cfg.get_string("points_channel", c.points_channel);
     c.pose_channel = cfg.get_string("pose_channel", c.pose_channel);
     c.map_channel = cfg.get_string("map_channel", c.map_channel);

@@ -9,7 +9,7 @@
 
 namespace ugv::terrain_daemon {
 
-struct TerrainDaemonConfig
+struct TerrainConfig
 {
     std::string points_channel = "POINTS.*";  // regex: every nodscan instance
     std::string pose_channel = "POSE";
@@ -21,6 +21,6 @@ struct TerrainDaemonConfig
 };
 
 // Reads every key (throws runtime::ConfigError, naming the key, for a bad value).
-TerrainDaemonConfig read_config(runtime::Config& cfg);
+TerrainConfig read_config(runtime::Config& cfg);
 
 }  // namespace ugv::terrain_daemon

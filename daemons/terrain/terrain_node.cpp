@@ -4,7 +4,13 @@
 #include <cmath>
 #include <utility>
 
-#include "lcm_convert.hpp"
+#include <spdlog/spdlog.h>
+
+#include "terrain_messages.hpp"
+#include "ugv/bus/typed.hpp"
+#include "ugv/io/clock.hpp"
+#include "ugv/runtime/counters.hpp"
+#include "ugv/terrain/simd.hpp"
 
 namespace ugv::terrain_daemon {
 
@@ -36,7 +42,7 @@ int64_t cloud_end_us(const point_cloud_t& msg)
 
 }  // namespace
 
-TerrainNode::TerrainNode(const TerrainDaemonConfig& config, Publish publish, std::function<int64_t()> now_us)
+TerrainNode::TerrainNode(const TerrainConfig& config, Publish publish, std::function<int64_t()> now_us)
     : config_(config),
       mapper_(config.map),
       publish_(std::move(publish)),
@@ -160,6 +166,42 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
     publish_(message_);
     ++counters_.maps_published;
     counters_.last_publish_us = now_us_() - start;
+}
+
+int run(daemon::Daemon& d, const TerrainConfig& config)
+{
+    d.set_health_timeout_us(config.health_timeout_us);
+    TerrainNode node(
+        config,
+        [&d, &config](const terrain_map_t& msg) {
+            bus::publish(d.out(), config.map_channel, msg);
+            d.mark_alive();
+            d.ready();
+        },
+        [] { return io::monotonic_us(); });
+    const auto sync_counters = [&] {
+        runtime::set_all(d.counters(), node.mapper().counters());
+        runtime::set_all(d.counters(), node.counters());
+    };
+    sync_counters();  // every counter is listed from the first status message on
+    bus::subscribe<pose_t>(d.bus(), config.pose_channel, [&](const std::string&, const pose_t& m, int64_t) {
+        node.on_pose(m);
+        sync_counters();
+    });
+    bus::subscribe<point_cloud_t>(d.bus(), config.points_channel,
+                                  [&](const std::string&, const point_cloud_t& m, int64_t) {
+                                      node.on_points(m);
+                                      sync_counters();
+                                  });
+    spdlog::info("mapping {} + {} -> {} at {} Hz of message time ({} vector code)", config.points_channel,
+                 config.pose_channel, config.map_channel, config.publish_hz,
+                 terrain::to_string(terrain::simd_level()));
+    const int rc = d.run();
+    sync_counters();
+    const auto& c = d.counters();
+    spdlog::info("{} points fused, {} maps published, {} wraps, {} rotations", c.get("points_fused"),
+                 c.get("maps_published"), c.get("wraps"), c.get("rotations"));
+    return rc;
 }
 
 }  // namespace ugv::terrain_daemon

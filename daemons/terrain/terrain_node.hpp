@@ -16,6 +16,7 @@
 #include <ugv/terrain_map_t.hpp>
 
 #include "terrain_config.hpp"
+#include "ugv/daemon/daemon.hpp"
 #include "ugv/terrain/terrain_mapper.hpp"
 
 namespace ugv::terrain_daemon {
@@ -31,6 +32,20 @@ struct NodeCounters
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("poses_in", poses_in);
+        f("poses_rejected_status", poses_rejected_status);
+        f("clouds_in", clouds_in);
+        f("clouds_malformed", clouds_malformed);
+        f("clouds_rejected_time", clouds_rejected_time);
+        f("poses_rejected_time", poses_rejected_time);
+        f("clouds_duplicate", clouds_duplicate);
+        f("maps_published", maps_published);
+        f("publish_time_us", last_publish_us);
+    }
 };
 
 class TerrainNode
@@ -38,7 +53,7 @@ class TerrainNode
 public:
     using Publish = std::function<void(const terrain_map_t&)>;
     // now_us: a clock for the publish-time counter only (never used for the output).
-    TerrainNode(const TerrainDaemonConfig& config, Publish publish, std::function<int64_t()> now_us);
+    TerrainNode(const TerrainConfig& config, Publish publish, std::function<int64_t()> now_us);
 
     void on_pose(const pose_t& msg);
     void on_points(const point_cloud_t& msg);
@@ -54,7 +69,7 @@ private:
     void accept_pose(const pose_t& msg);
     void maybe_publish(int64_t message_time_us);
 
-    TerrainDaemonConfig config_;
+    TerrainConfig config_;
     terrain::TerrainMapper mapper_;
     Publish publish_;
     std::function<int64_t()> now_us_;
@@ -72,5 +87,9 @@ private:
     terrain::MapSnapshot snapshot_;
     terrain_map_t message_;
 };
+
+// The daemon: a TerrainNode on the bus (subscriptions, publication, counters) until a stop
+// signal, or the end of the --replay log.
+int run(daemon::Daemon& d, const TerrainConfig& config);
 
 }  // namespace ugv::terrain_daemon

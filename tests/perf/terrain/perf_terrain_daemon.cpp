@@ -15,7 +15,7 @@
 #include <ugv/terrain_map_t.hpp>
 #include <ugv_test/process.hpp>
 
-#include "lcm_convert.hpp"
+#include "terrain_messages.hpp"
 #include "synthetic_log.hpp"
 #include "ugv/terrain/terrain_mapper.hpp"
 

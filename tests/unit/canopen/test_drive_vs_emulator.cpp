@@ -132,9 +132,9 @@ TEST_CASE("The emulated drive's event timer keeps its cadence when its host proc
 TEST_CASE("A constant-rate nod moves the emulated axis between the limits and never beyond")
 {
     Bench b;
-    servo::NodControllerOptions o;
+    servo_daemon::NodControllerOptions o;
     o.hard_limits = {b.config.min_angle_rad, b.config.max_angle_rad};
-    servo::NodController nod(o);
+    servo_daemon::NodController nod(o);
     nodscan::NodCommand c;
     c.kind = nodscan::NodKind::constant_rate;
     c.min_tilt_rad = 0.0;
@@ -166,9 +166,9 @@ TEST_CASE("A constant-rate nod moves the emulated axis between the limits and ne
 TEST_CASE("A fault raised mid-nod is reset, the drive re-enabled and the nod resumes")
 {
     Bench b;
-    servo::NodControllerOptions o;
+    servo_daemon::NodControllerOptions o;
     o.hard_limits = {b.config.min_angle_rad, b.config.max_angle_rad};
-    servo::NodController nod(o);
+    servo_daemon::NodController nod(o);
     nodscan::NodCommand c;
     c.kind = nodscan::NodKind::constant_rate;
     c.min_tilt_rad = 0.0;
@@ -252,9 +252,9 @@ TEST_CASE("The emulator refuses what a real drive refuses")
 TEST_CASE("The emulated axis following the uniform-spacing profile lays scans evenly on the ground")
 {
     Bench b;
-    servo::NodControllerOptions o;
+    servo_daemon::NodControllerOptions o;
     o.hard_limits = {b.config.min_angle_rad, b.config.max_angle_rad};
-    servo::NodController nod(o);
+    servo_daemon::NodController nod(o);
     const double h = 0.87, spacing = 0.2, period = 1.0 / 37.5;
     nodscan::NodCommand c;
     c.kind = nodscan::NodKind::uniform_ground_spacing;

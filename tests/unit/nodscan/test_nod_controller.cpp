@@ -6,10 +6,10 @@ using namespace ugv;
 
 TEST_CASE("Nod controller: a refused command leaves the running profile alone")
 {
-    servo::NodControllerOptions o;
+    servo_daemon::NodControllerOptions o;
     o.hard_limits = {-0.1, 0.6};
     o.lead_s = 0.05;
-    servo::NodController nod(o);
+    servo_daemon::NodController nod(o);
     nodscan::NodCommand rate;
     rate.kind = nodscan::NodKind::constant_rate;
     rate.min_tilt_rad = 0.0;
@@ -33,10 +33,10 @@ TEST_CASE("Nod controller: a refused command leaves the running profile alone")
 
 TEST_CASE("Nod controller: resume restarts the profile from where the axis is")
 {
-    servo::NodControllerOptions o;
+    servo_daemon::NodControllerOptions o;
     o.hard_limits = {-0.1, 0.6};
     o.lead_s = 0.0;
-    servo::NodController nod(o);
+    servo_daemon::NodController nod(o);
     nodscan::NodCommand rate;
     rate.kind = nodscan::NodKind::constant_rate;
     rate.min_tilt_rad = 0.0;

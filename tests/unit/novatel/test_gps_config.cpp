@@ -3,15 +3,15 @@
 
 #include "gps_config.hpp"
 
-using ugv::gps::parse_log_entry;
-using ugv::gps::read_gps_config;
+using ugv::gps_daemon::parse_log_entry;
+using ugv::gps_daemon::read_config;
 using ugv::runtime::Config;
 using ugv::runtime::ConfigError;
 
 TEST_CASE("gps config: defaults")
 {
     Config cfg = Config::empty();
-    const auto c = read_gps_config(cfg);
+    const auto c = read_config(cfg);
     CHECK(c.device == "/dev/ugv/gps");
     CHECK(c.baud == 9600);
     CHECK(c.configure);
@@ -29,19 +29,19 @@ TEST_CASE("gps config: defaults")
 TEST_CASE("gps config: NMEA defaults, per-log periods and the automatic silence timeout")
 {
     Config cfg = Config::parse("protocol = \"nmea\"\nperiod_s = 0.5\n");
-    auto c = read_gps_config(cfg);
+    auto c = read_config(cfg);
     REQUIRE(c.logs.size() == 3);
     CHECK(c.logs[0].message == "GPGGA");
     CHECK(c.logs[2].message == "GPGST");
     CHECK(c.logs[2].period_s == 0.5);
     Config cfg2 = Config::parse("logs = [\"bestposb 0.05\", \"timeb 1\"]\nsilence_timeout_s = 3\n");
-    c = read_gps_config(cfg2);
+    c = read_config(cfg2);
     CHECK(c.logs[0].message == "BESTPOSB");
     CHECK(c.logs[0].period_s == 0.05);
     CHECK(c.logs[1].period_s == 1.0);
     CHECK(c.silence_timeout_us == 3'000'000);
     Config cfg3 = Config::parse("logs = [\"bestposb 0.05\"]\n");
-    CHECK(read_gps_config(cfg3).silence_timeout_us == 500'000);  // at least 0.5 s
+    CHECK(read_config(cfg3).silence_timeout_us == 500'000);  // at least 0.5 s
 }
 
 TEST_CASE("gps config: bad values name the key")
@@ -49,7 +49,7 @@ TEST_CASE("gps config: bad values name the key")
     const auto key_of = [](const std::string& text) {
         Config cfg = Config::parse(text, "gps.toml");
         try {
-            read_gps_config(cfg);
+            read_config(cfg);
         } catch (const ConfigError& e) {
             return e.key();
         }

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "lms_config.hpp"
-#include "scan_message.hpp"
+#include "lms_messages.hpp"
 
 using namespace ugv::lms_daemon;
 using ugv::runtime::Config;

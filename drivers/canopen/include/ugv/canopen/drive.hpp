@@ -87,6 +87,23 @@ struct DriveCounters
     uint64_t tpdo_received = 0;
     uint64_t tpdo_implausible = 0;  // TPDOs dropped by check_tpdo_plausibility
     uint64_t clock_restarts = 0;    // TPDO1 stamp clock restarts (ugv/io/periodic_clock.hpp)
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("sdo_timeouts", sdo_timeouts);
+        f("sdo_aborts", sdo_aborts);
+        f("emcy", emcy);
+        f("heartbeat_losses", heartbeat_losses);
+        f("faults", faults);
+        f("fault_resets", fault_resets);
+        f("enable_failures", enable_failures);
+        f("setpoints_acknowledged", setpoints_acknowledged);
+        f("setpoint_timeouts", setpoint_timeouts);
+        f("tpdo_received", tpdo_received);
+        f("tpdo_implausible", tpdo_implausible);
+        f("clock_restarts", clock_restarts);
+    }
 };
 
 class Drive

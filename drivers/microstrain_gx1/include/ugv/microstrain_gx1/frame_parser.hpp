@@ -45,6 +45,15 @@ struct ParserCounters
     uint64_t checksum_errors = 0;
     uint64_t resyncs = 0;
     uint64_t bytes_skipped = 0;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("frames", frames);
+        f("checksum_errors", checksum_errors);
+        f("resyncs", resyncs);
+        f("bytes_skipped", bytes_skipped);
+    }
 };
 
 class FrameParser

@@ -71,6 +71,19 @@ struct SessionCounters
     uint64_t eeprom_invalid = 0;       // EEPROM gains/timing refused (defaults kept)
     uint64_t clock_restarts = 0;
     uint64_t implausible = 0;          // frames with a valid checksum that disagreed with both neighbours
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("samples", samples);
+        f("initialisations", initialisations);
+        f("handshake_failures", handshake_failures);
+        f("request_timeouts", request_timeouts);
+        f("silences", silences);
+        f("eeprom_invalid", eeprom_invalid);
+        f("clock_restarts", clock_restarts);
+        f("implausible", implausible);
+    }
 };
 
 class Session

@@ -33,6 +33,18 @@ struct DecoderCounters
     uint64_t unknown_total = 0;
     std::map<uint16_t, uint64_t> unknown_binary_ids;   // binary logs we skip, by message id
     std::map<std::string, uint64_t> unknown_names;     // ASCII logs / NMEA sentences we skip
+
+    // The logs skipped are named as they are met: unknown_id_<id> and unknown_<name>.
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("decoded", decoded);
+        f("binary_responses", binary_responses);
+        f("malformed", malformed);
+        f("unknown_ids", unknown_total);
+        for (const auto& [id, n] : unknown_binary_ids) f("unknown_id_" + std::to_string(id), n);
+        for (const auto& [name, n] : unknown_names) f("unknown_" + name, n);
+    }
 };
 
 class Decoder

@@ -46,6 +46,24 @@ struct SessionCounters
     uint64_t commands_failed = 0;    // <ERROR or no reply
     uint64_t starts = 0;
     uint64_t found_by_probing = 0;   // starts that found the receiver at a probed rate
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("commands_sent", commands_sent);
+        f("commands_failed", commands_failed);
+        f("starts", starts);
+        f("found_by_probing", found_by_probing);
+    }
+    // A daemon keeps the sum over the sessions it ran.
+    SessionCounters& operator+=(const SessionCounters& o)
+    {
+        commands_sent += o.commands_sent;
+        commands_failed += o.commands_failed;
+        starts += o.starts;
+        found_by_probing += o.found_by_probing;
+        return *this;
+    }
 };
 
 class Session

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace ugv::novatel {
@@ -56,6 +57,17 @@ struct SplitterCounters
     uint64_t resyncs = 0;        // runs of skipped bytes (one per loss of sync)
     uint64_t skipped_bytes = 0;  // bytes that belonged to no valid frame (CR/LF excluded)
     uint64_t frames_total() const;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        for (std::size_t k = 0; k < kFrameKindCount; ++k)
+            f(std::string("frames_") + frame_kind_name(static_cast<FrameKind>(k)), frames[k]);
+        f("crc_errors", crc_errors);
+        f("bad_length", bad_length);
+        f("resyncs", resyncs);
+        f("skipped_bytes", skipped_bytes);
+    }
 };
 
 class StreamSplitter

@@ -69,6 +69,20 @@ struct SessionStats
     std::atomic<int64_t> bytes_in{0};
     std::atomic<int64_t> bad_scans{0};    // good CRC but undecodable or wrong value count
     std::atomic<int64_t> clock_restarts{0};  // scan clock restarts (see ugv/io/periodic_clock.hpp)
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("scans", scans.load());
+        f("crc_errors", crc_errors.load());
+        f("resyncs", resyncs.load());
+        f("naks", naks.load());
+        f("timeouts", timeouts.load());
+        f("reconnects", reconnects.load());
+        f("bytes_in", bytes_in.load());
+        f("bad_scans", bad_scans.load());
+        f("clock_restarts", clock_restarts.load());
+    }
 };
 
 struct SessionCallbacks

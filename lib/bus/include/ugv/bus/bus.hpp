@@ -38,6 +38,17 @@ struct BusCounters
     uint64_t publish_failures = 0;
     uint64_t incomplete_messages = 0;  // live udpm: fragmented messages that lost a fragment
     uint64_t invalid_datagrams = 0;    // live udpm: datagrams on the port that are not LCM's
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("received", received);
+        f("decode_failures", decode_failures);
+        f("handler_errors", handler_errors);
+        f("publish_failures", publish_failures);
+        f("incomplete_messages", incomplete_messages);
+        f("invalid_datagrams", invalid_datagrams);
+    }
 };
 
 class Bus

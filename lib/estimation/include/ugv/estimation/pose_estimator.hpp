@@ -106,6 +106,28 @@ struct EstimatorCounters
     int64_t non_finite = 0;         // refused by input_checks
     int64_t filter_resets = 0;      // the filter went non-finite and restarted
     int64_t poses = 0;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("poses", poses);
+        f("gps_used", gps_used);
+        f("gps_rejected", gps_rejected);
+        f("gps_low_quality", gps_low_quality);
+        f("gps_resets", gps_resets);
+        f("velocity_used", velocity_used);
+        f("velocity_rejected", velocity_rejected);
+        f("course_used", course_used);
+        f("course_rejected", course_rejected);
+        f("imu_used", imu_used);
+        f("imu_rejected", imu_rejected);
+        f("late", late);
+        f("reordered", reordered);
+        f("outages", outages);
+        f("non_finite", non_finite);
+        f("filter_resets", filter_resets);
+        f("duplicates", duplicates);
+    }
 };
 
 class PoseEstimator

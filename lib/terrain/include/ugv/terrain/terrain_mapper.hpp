@@ -50,6 +50,25 @@ struct MapCounters
     uint64_t recentres = 0;                  // lateral re-centring by whole columns (egocentric)
     uint64_t resets = 0;                     // map cleared after a pose jump larger than the map
     uint64_t cells_dropped = 0;              // cells rotated out of the map
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("points_fused", points_fused);
+        f("points_spread", points_spread);
+        f("rejected_non_finite", rejected_non_finite);
+        f("rejected_before_history", rejected_before_history);
+        f("rejected_after_history", rejected_after_history);
+        f("rejected_no_pose", rejected_no_pose);
+        f("rejected_outside_map", rejected_outside_map);
+        f("poses_rejected_non_finite", poses_rejected_non_finite);
+        f("poses_rejected_out_of_order", poses_rejected_out_of_order);
+        f("wraps", wraps);
+        f("rotations", rotations);
+        f("recentres", recentres);
+        f("resets", resets);
+        f("cells_dropped", cells_dropped);
+    }
 };
 
 // What the map says, in unwrapped order (i along the map's +X, j along +Y), ready to publish.

@@ -1,4 +1,4 @@
-// The LMS session on its own thread: opens the serial port (and reopens it after an unplug),
+// The adapter of ugv-lms: the LMS session on its own thread: opens the serial port (and reopens it after an unplug),
 // runs the session until the daemon stops, and queues scans and raw bytes for the main thread.
 #pragma once
 
@@ -16,11 +16,11 @@
 
 namespace ugv::lms_daemon {
 
-class DeviceThread
+class LmsNode
 {
 public:
-    DeviceThread(daemon::Daemon& d, const LmsConfig& config);
-    ~DeviceThread();
+    LmsNode(daemon::Daemon& d, const LmsConfig& config);
+    ~LmsNode();
     void start();
     void join();
     // Copies the session's counters into the daemon's (main thread, from a timer).
@@ -49,5 +49,8 @@ private:
     int64_t scan_seq_ = 0, raw_seq_ = 0;
     std::thread thread_;
 };
+
+// The daemon: the device thread, status and systemd until a stop signal.
+int run(daemon::Daemon& d, const LmsConfig& config);
 
 }  // namespace ugv::lms_daemon

@@ -1,20 +1,21 @@
-#include "receiver_loop.hpp"
+#include "gps_node.hpp"
 
 #include <chrono>
 #include <thread>
 #include <vector>
 
 #include <spdlog/spdlog.h>
-#include <ugv/raw_bytes_t.hpp>
 
-#include "lcm_messages.hpp"
+#include "gps_messages.hpp"
 #include "ugv/bus/typed.hpp"
+#include "ugv/daemon/raw_bytes.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/serial_port.hpp"
 #include "ugv/novatel/session.hpp"
 #include "ugv/runtime/backoff.hpp"
+#include "ugv/runtime/counters.hpp"
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 namespace {
 
 constexpr int kPollMs = 50;
@@ -31,28 +32,26 @@ void sleep_unless_stopped(const daemon::Daemon& d, int64_t us)
     }
 }
 
-const char* kCounterNames[] = {
-    "frames_binary", "frames_binary_short", "frames_ascii", "frames_ascii_short", "frames_nmea",
-    "frames_reply", "frames_prompt", "crc_errors", "bad_length", "resyncs", "skipped_bytes", "unknown_ids",
-    "malformed", "binary_responses", "ignored_protocol", "superseded", "fixes_published", "velocities_published",
-    "reconnects", "silences", "configure_failures", "open_failures", "commands_sent", "found_by_probing",
-    "clock_offset_us", "clock_offset_last_us", "clock_jumps", "time_status",
+// The daemon's own counters (the libraries' are listed by their structs).
+const char* kNodeCounterNames[] = {
+    "ignored_protocol", "superseded", "fixes_published", "velocities_published", "reconnects", "silences",
+    "configure_failures", "open_failures", "clock_offset_us", "clock_offset_last_us", "clock_jumps", "time_status",
 };
 
 }  // namespace
 
-ReceiverLoop::ReceiverLoop(daemon::Daemon& daemon, GpsConfig config)
+GpsNode::GpsNode(daemon::Daemon& daemon, GpsConfig config)
     : daemon_(daemon), config_(std::move(config)),
       interpreter_(novatel::InterpreterConfig{config_.leap_seconds, config_.output_latency_us, config_.baud,
                                               2'000'000})
 {
-    for (const char* name : kCounterNames) {
-        daemon_.counters()[name];  // listed from the first status message on
-    }
+    // Every counter is listed from the first status message on.
+    for (const char* name : kNodeCounterNames) daemon_.counters()[name];
+    update_counters(nullptr);
     daemon_.set_health_timeout_us(config_.silence_timeout_us);
 }
 
-bool ReceiverLoop::wanted(novatel::FrameKind kind) const
+bool GpsNode::wanted(novatel::FrameKind kind) const
 {
     using novatel::FrameKind;
     switch (config_.protocol) {
@@ -63,7 +62,7 @@ bool ReceiverLoop::wanted(novatel::FrameKind kind) const
     return true;
 }
 
-void ReceiverLoop::on_message(const novatel::Decoded& m)
+void GpsNode::on_message(const novatel::Decoded& m)
 {
     if (!wanted(m.kind)) {
         ++ignored_;
@@ -84,42 +83,20 @@ void ReceiverLoop::on_message(const novatel::Decoded& m)
     }
 }
 
-void ReceiverLoop::publish_raw(const uint8_t* data, std::size_t n, int64_t utime)
+void GpsNode::publish_raw(const uint8_t* data, std::size_t n, int64_t utime)
 {
-    ugv::raw_bytes_t raw{};
-    raw.utime = utime;
-    raw.seq = raw_seq_++;
-    raw.device = config_.raw_device_name;
-    raw.direction = ugv::raw_bytes_t::DIRECTION_FROM_DEVICE;
-    raw.nbytes = static_cast<int32_t>(n);
-    raw.data.assign(data, data + n);
-    bus::publish(daemon_.out(), config_.channel_raw, raw);
+    bus::publish(daemon_.out(), config_.channel_raw,
+                 daemon::raw_bytes_message(config_.raw_device_name, false, data, n, utime, raw_seq_++));
 }
 
-void ReceiverLoop::update_counters()
+void GpsNode::update_counters(const novatel::Session* session)
 {
     auto& c = daemon_.counters();
-    const auto& s = decoder_.splitter_counters();
-    for (std::size_t k = 0; k < novatel::kFrameKindCount; ++k) {
-        c[std::string("frames_") + novatel::frame_kind_name(static_cast<novatel::FrameKind>(k))] =
-            static_cast<int64_t>(s.frames[k]);
-    }
-    c["crc_errors"] = static_cast<int64_t>(s.crc_errors);
-    c["bad_length"] = static_cast<int64_t>(s.bad_length);
-    c["resyncs"] = static_cast<int64_t>(s.resyncs);
-    c["skipped_bytes"] = static_cast<int64_t>(s.skipped_bytes);
-    const auto& d = decoder_.counters();
-    if (static_cast<int64_t>(d.unknown_total) != c["unknown_ids"].load()) {
-        c["unknown_ids"] = static_cast<int64_t>(d.unknown_total);
-        for (const auto& [id, n] : d.unknown_binary_ids) {
-            c["unknown_id_" + std::to_string(id)] = static_cast<int64_t>(n);
-        }
-        for (const auto& [name, n] : d.unknown_names) {
-            c["unknown_" + name] = static_cast<int64_t>(n);
-        }
-    }
-    c["malformed"] = static_cast<int64_t>(d.malformed);
-    c["binary_responses"] = static_cast<int64_t>(d.binary_responses);
+    runtime::set_all(c, decoder_.splitter_counters());
+    runtime::set_all(c, decoder_.counters());
+    novatel::SessionCounters sessions = sessions_;
+    if (session) sessions += session->counters();
+    runtime::set_all(c, sessions);
     c["ignored_protocol"] = static_cast<int64_t>(ignored_);
     c["superseded"] = static_cast<int64_t>(interpreter_.superseded());
     const auto& clock = interpreter_.clock();
@@ -131,7 +108,7 @@ void ReceiverLoop::update_counters()
     c["time_status"] = static_cast<int64_t>(interpreter_.last_time_status());
 }
 
-void ReceiverLoop::run()
+void GpsNode::run()
 {
     auto& counters = daemon_.counters();
     runtime::Backoff backoff;
@@ -163,16 +140,15 @@ void ReceiverLoop::run()
             session.set_raw_tap([this](const uint8_t* p, std::size_t n, int64_t t) { publish_raw(p, n, t); });
         }
         const bool started = session.start(sink);
-        counters["commands_sent"] += static_cast<int64_t>(session.counters().commands_sent);
         if (session.counters().found_by_probing > 0) {
-            ++counters["found_by_probing"];
             spdlog::warn("{}: receiver answered at {} baud, not at the configured {}; set it back with COM", config_.device,
                          session.found_at_baud(), config_.com_baud > 0 ? config_.com_baud : config_.baud);
         }
         if (!started) {
             ++counters["configure_failures"];
             daemon_.set_state(daemon::State::degraded, "configure " + config_.device + ": " + session.error());
-            update_counters();
+            sessions_ += session.counters();
+            update_counters(nullptr);
             continue;
         }
         spdlog::info("{}: session started ({}, {} baud)", config_.device, config_.configure ? "configured" : "passive",
@@ -181,7 +157,7 @@ void ReceiverLoop::run()
         const uint64_t fixes_at_start = fixes_;
         while (!daemon_.stop_requested()) {
             status = session.poll(kPollMs, sink);
-            update_counters();
+            update_counters(&session);
             if (status != novatel::Session::Status::ok) {
                 break;
             }
@@ -191,6 +167,8 @@ void ReceiverLoop::run()
                 backoff.reset();
             }
         }
+        sessions_ += session.counters();
+        update_counters(nullptr);
         if (daemon_.stop_requested()) {
             break;
         }
@@ -203,4 +181,25 @@ void ReceiverLoop::run()
     }
 }
 
-}  // namespace ugv::gps
+int run(daemon::Daemon& d, const GpsConfig& config)
+{
+    GpsNode node(d, config);
+    std::thread device;
+    // The bus's publishing side exists once run() has started: start the device thread from
+    // the main loop, which also sends READY=1 once fixes flow.
+    d.add_timer(100'000, [&] {
+        if (!device.joinable()) {
+            device = std::thread([&] { node.run(); });
+        }
+        if (node.data_flowing() && d.state() != daemon::State::degraded) {
+            d.ready();
+        }
+    });
+    const int rc = d.run();
+    if (device.joinable()) {
+        device.join();
+    }
+    return rc;
+}
+
+}  // namespace ugv::gps_daemon

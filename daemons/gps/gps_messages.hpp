@@ -6,9 +6,9 @@
 
 #include "ugv/novatel/interpreter.hpp"
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 
 ugv::gps_fix_t to_message(const novatel::Fix& fix, int64_t seq);
 ugv::gps_velocity_t to_message(const novatel::VelocityFix& velocity, int64_t seq);
 
-}  // namespace ugv::gps
+}  // namespace ugv::gps_daemon

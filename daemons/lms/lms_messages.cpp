@@ -1,4 +1,4 @@
-#include "scan_message.hpp"
+#include "lms_messages.hpp"
 
 namespace ugv::lms_daemon {
 

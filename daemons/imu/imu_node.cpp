@@ -1,77 +1,63 @@
-#include "device_loop.hpp"
+#include "imu_node.hpp"
 
 #include <chrono>
 #include <thread>
 
 #include <spdlog/spdlog.h>
 
-#include <ugv/raw_bytes_t.hpp>
-
-#include "imu_message.hpp"
-#include "tap_stream.hpp"
+#include "imu_messages.hpp"
+#include "ugv/io/tap_stream.hpp"
 #include "ugv/bus/typed.hpp"
+#include "ugv/daemon/raw_bytes.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/serial_port.hpp"
 #include "ugv/runtime/backoff.hpp"
+#include "ugv/runtime/counters.hpp"
 #include "ugv/runtime/rate_limited_log.hpp"
 
 namespace ugv::imu_daemon {
 
 namespace gx1 = ugv::microstrain_gx1;
 
-DeviceLoop::DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config)
+ImuNode::ImuNode(daemon::Daemon& daemon, const ImuConfig& config)
     : d_(daemon),
       config_(config),
       published_(daemon.counters()["published"]),
       publish_failures_(daemon.counters()["publish_failures"])
 {
     // Every counter exists from the start, so the status lists them all at zero.
-    for (const char* name : {"frames", "checksum_errors", "resyncs", "bytes_skipped", "reconnects", "silences",
-                             "handshake_failures", "clock_restarts", "implausible", "published", "publish_failures"})
-        d_.counters()[name];
+    runtime::set_all(d_.counters(), gx1::ParserCounters{});
+    runtime::set_all(d_.counters(), gx1::SessionCounters{});
+    d_.counters()["reconnects"];
     d_.set_health_timeout_us(int64_t{config_.session.silence_timeout_ms} * 1000);
 }
 
-void DeviceLoop::sleep_us(int64_t us) const
+void ImuNode::sleep_us(int64_t us) const
 {
     const int64_t end = io::monotonic_us() + us;
     while (!d_.stop_requested() && io::monotonic_us() < end)
         std::this_thread::sleep_for(std::chrono::microseconds(std::min<int64_t>(50'000, end - io::monotonic_us())));
 }
 
-void DeviceLoop::sync_counters(const gx1::Session& session)
+void ImuNode::sync_counters(const gx1::Session& session)
 {
     // The parser's counters are cumulative over the session's life: mirror them.
-    const auto& p = session.parser_counters();
-    const auto& s = session.counters();
-    auto& c = d_.counters();
-    c["frames"].store(static_cast<int64_t>(p.frames));
-    c["checksum_errors"].store(static_cast<int64_t>(p.checksum_errors));
-    c["resyncs"].store(static_cast<int64_t>(p.resyncs));
-    c["bytes_skipped"].store(static_cast<int64_t>(p.bytes_skipped));
-    c["silences"].store(static_cast<int64_t>(s.silences));
-    c["handshake_failures"].store(static_cast<int64_t>(s.handshake_failures));
-    c["clock_restarts"].store(static_cast<int64_t>(s.clock_restarts));
-    c["implausible"].store(static_cast<int64_t>(s.implausible));
+    runtime::set_all(d_.counters(), session.parser_counters());
+    runtime::set_all(d_.counters(), session.counters());
 }
 
-void DeviceLoop::run()
+void ImuNode::run()
 {
     io::SerialPort port;
-    TapStream::Tap tap;
+    io::TapStream::Tap tap;
     if (config_.publish_raw) {
         tap = [this](bool to_device, const uint8_t* data, std::size_t n, int64_t utime) {
-            ugv::raw_bytes_t raw{};
-            raw.utime = utime != 0 ? utime : io::now_utime();
-            raw.seq = raw_seq_++;
-            raw.device = "imu";
-            raw.direction = to_device ? ugv::raw_bytes_t::DIRECTION_TO_DEVICE : ugv::raw_bytes_t::DIRECTION_FROM_DEVICE;
-            raw.nbytes = static_cast<int32_t>(n);
-            raw.data.assign(data, data + n);
+            const auto raw = daemon::raw_bytes_message("imu", to_device, data, n, utime != 0 ? utime : io::now_utime(),
+                                                       raw_seq_++);
             if (!bus::publish(d_.out(), config_.raw_channel, raw)) ++publish_failures_;
         };
     }
-    TapStream stream(port, tap);
+    io::TapStream stream(port, tap);
     gx1::Session session(stream, config_.session, gx1::FrameConverter(config_.r_body_sensor, config_.declination_rad));
     session.set_abort([this] { return d_.stop_requested(); });
     // At most 1 s between attempts: a unit that comes back streams again within ~1.5 s.
@@ -139,6 +125,16 @@ void DeviceLoop::run()
         }
     }
     port.close();
+}
+
+int run(daemon::Daemon& d, const ImuConfig& config)
+{
+    ImuNode node(d, config);
+    std::thread device([&node] { node.run(); });
+    const int rc = d.run();
+    d.request_stop();
+    device.join();
+    return rc;
 }
 
 }  // namespace ugv::imu_daemon

@@ -1,16 +1,17 @@
-#include "device_thread.hpp"
+#include "lms_node.hpp"
 
 #include <spdlog/spdlog.h>
 
-#include "scan_message.hpp"
+#include "lms_messages.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
+#include "ugv/runtime/counters.hpp"
 
 namespace ugv::lms_daemon {
 
 namespace lms = ugv::sick_lms2xx;
 
-DeviceThread::DeviceThread(daemon::Daemon& d, const LmsConfig& config)
+LmsNode::LmsNode(daemon::Daemon& d, const LmsConfig& config)
     : d_(d),
       config_(config),
       published_(d.counters()["published"]),
@@ -37,19 +38,19 @@ DeviceThread::DeviceThread(daemon::Daemon& d, const LmsConfig& config)
     d_.set_health_timeout_us(static_cast<int64_t>(2 * session_.silence_timeout_s() * 1e6));
 }
 
-DeviceThread::~DeviceThread() { join(); }
+LmsNode::~LmsNode() { join(); }
 
-void DeviceThread::start()
+void LmsNode::start()
 {
     thread_ = std::thread([this] { run(); });
 }
 
-void DeviceThread::join()
+void LmsNode::join()
 {
     if (thread_.joinable()) thread_.join();
 }
 
-void DeviceThread::run()
+void LmsNode::run()
 {
     if (!port_.open(config_.device, 9600)) {
         spdlog::warn("{} (will keep trying)", port_.last_error());
@@ -60,7 +61,7 @@ void DeviceThread::run()
     port_.close();
 }
 
-bool DeviceThread::reopen()
+bool LmsNode::reopen()
 {
     port_.close();
     if (port_.open(config_.device, 9600)) {
@@ -72,7 +73,7 @@ bool DeviceThread::reopen()
     return false;
 }
 
-void DeviceThread::on_state(lms::SessionState s, const std::string& why)
+void LmsNode::on_state(lms::SessionState s, const std::string& why)
 {
     streaming_ = s == lms::SessionState::streaming;
     switch (s) {
@@ -92,7 +93,7 @@ void DeviceThread::on_state(lms::SessionState s, const std::string& why)
     }
 }
 
-void DeviceThread::on_bytes(const uint8_t* data, std::size_t n, int64_t utime, bool from_device)
+void LmsNode::on_bytes(const uint8_t* data, std::size_t n, int64_t utime, bool from_device)
 {
     ugv::raw_bytes_t m;
     m.utime = utime != 0 ? utime : io::now_utime();
@@ -105,26 +106,35 @@ void DeviceThread::on_bytes(const uint8_t* data, std::size_t n, int64_t utime, b
 }
 
 template <typename M>
-bool DeviceThread::publish(const std::string& channel, const M& m)
+bool LmsNode::publish(const std::string& channel, const M& m)
 {
     if (bus::publish(d_.out(), channel, m)) return true;
     ++publish_failures_;
     return false;
 }
 
-void DeviceThread::publish_counters()
+void LmsNode::publish_counters() { runtime::set_all(d_.counters(), session_.stats()); }
+
+int run(daemon::Daemon& d, const LmsConfig& config)
 {
-    const lms::SessionStats& s = session_.stats();
-    auto& c = d_.counters();
-    c["scans"] = s.scans.load();
-    c["crc_errors"] = s.crc_errors.load();
-    c["resyncs"] = s.resyncs.load();
-    c["naks"] = s.naks.load();
-    c["timeouts"] = s.timeouts.load();
-    c["reconnects"] = s.reconnects.load();
-    c["bytes_in"] = s.bytes_in.load();
-    c["bad_scans"] = s.bad_scans.load();
-    c["clock_restarts"] = s.clock_restarts.load();
+    LmsNode device(d, config);
+    device.publish_counters();  // every counter is listed from the first status message on
+    int ticks = 0;
+    d.add_timer(200'000, [&] {
+        device.publish_counters();
+        if (device.streaming()) d.ready();
+        if (++ticks % 5 != 0) return;  // the systemd status line once a second
+        d.notify_status(device.streaming() ? "streaming, " + std::to_string(d.counters().get("scans")) + " scans"
+                                           : "looking for the LMS on " + config.device);
+    });
+    spdlog::info("{} at {} baud, {} deg / {} deg, {} -> {}", config.device, config.session.baud,
+                 config.session.angle_deg, config.session.resolution_cdeg / 100.0,
+                 config.session.units == sick_lms2xx::Units::mm ? "mm" : "cm", config.channel);
+    device.start();
+    const int rc = d.run();
+    d.request_stop();
+    device.join();
+    return rc;
 }
 
 }  // namespace ugv::lms_daemon

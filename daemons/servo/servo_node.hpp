@@ -1,4 +1,4 @@
-// ugv-servo's adapter: CAN transport <-> canopen::Drive <-> NodController, SERVO_COMMAND in,
+// The adapter of ugv-servo: CAN transport <-> canopen::Drive <-> NodController, SERVO_COMMAND in,
 // SERVO_STATE and the status counters out. Runs on the daemon's main loop (the transport's
 // fd plus a control timer); a failed drive session or transport is re-initialised with
 // back-off while the daemon reports DEGRADED.
@@ -25,12 +25,38 @@
 #include "ugv/runtime/rate_limited_log.hpp"
 #include "ugv/servo_command_t.hpp"
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 
-class ServoApp
+// The daemon's own counters (the drive's are canopen::DriveCounters).
+struct ServoNodeCounters
+{
+    uint64_t bus_errors = 0;
+    uint64_t reconnects = 0;
+    uint64_t reinits = 0;
+    uint64_t tx_failures = 0;
+    uint64_t commands_accepted = 0;
+    uint64_t commands_refused = 0;
+    uint64_t samples = 0;
+    uint64_t rx_errors = 0;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("bus_errors", bus_errors);
+        f("reconnects", reconnects);
+        f("reinits", reinits);
+        f("tx_failures", tx_failures);
+        f("commands_accepted", commands_accepted);
+        f("commands_refused", commands_refused);
+        f("samples", samples);
+        f("rx_errors", rx_errors);
+    }
+};
+
+class ServoNode
 {
 public:
-    ServoApp(daemon::Daemon& d, ServoConfig config);
+    ServoNode(daemon::Daemon& d, ServoConfig config);
     // Opens the transport, subscribes, registers the fd and the control timer.
     void start();
     // After Daemon::run() returned: halt, then disable, within the shutdown timeout.
@@ -66,10 +92,11 @@ private:
     bool was_operational_ = false;
     bool restart_scheduled_ = false;
     int64_t seq_ = 0;
-    uint64_t bus_errors_ = 0, reconnects_ = 0, reinits_ = 0, tx_failures_ = 0;
-    uint64_t commands_accepted_ = 0, commands_refused_ = 0, samples_ = 0;
-    uint64_t rx_errors_ = 0;
+    ServoNodeCounters counters_;
     int rx_errors_in_a_row_ = 0;  // without a frame between: the transport is broken
 };
 
-}  // namespace ugv::servo
+// The daemon: the drive on the bus until a stop signal, then halt and disable.
+int run(daemon::Daemon& d, ServoConfig config);
+
+}  // namespace ugv::servo_daemon

@@ -1,25 +1,25 @@
 // A ByteStream that passes everything through to another one and shows each chunk read or
-// written to a callback: how the daemon publishes the raw wire bytes (publish_raw).
+// written to a callback: how a daemon publishes the raw wire bytes (publish_raw).
 #pragma once
 
 #include <functional>
 
 #include "ugv/io/byte_stream.hpp"
 
-namespace ugv::imu_daemon {
+namespace ugv::io {
 
-class TapStream final : public io::ByteStream
+class TapStream final : public ByteStream
 {
 public:
     // to_device: false for bytes read from the device, true for bytes written to it.
     using Tap = std::function<void(bool to_device, const uint8_t* data, std::size_t n, int64_t utime)>;
 
-    TapStream(io::ByteStream& inner, Tap tap) : inner_(inner), tap_(std::move(tap)) {}
+    TapStream(ByteStream& inner, Tap tap) : inner_(inner), tap_(std::move(tap)) {}
 
-    io::ReadResult read(uint8_t* buf, std::size_t cap, int timeout_ms) override
+    ReadResult read(uint8_t* buf, std::size_t cap, int timeout_ms) override
     {
-        const io::ReadResult r = inner_.read(buf, cap, timeout_ms);
-        if (tap_ && r.status == io::ReadResult::Status::data) tap_(false, buf, r.n, r.utime);
+        const ReadResult r = inner_.read(buf, cap, timeout_ms);
+        if (tap_ && r.status == ReadResult::Status::data) tap_(false, buf, r.n, r.utime);
         return r;
     }
     bool write(const uint8_t* data, std::size_t n) override
@@ -35,8 +35,8 @@ public:
     const std::string& last_error() const override { return inner_.last_error(); }
 
 private:
-    io::ByteStream& inner_;
+    ByteStream& inner_;
     Tap tap_;
 };
 
-}  // namespace ugv::imu_daemon
+}  // namespace ugv::io

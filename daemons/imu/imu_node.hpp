@@ -1,4 +1,4 @@
-// The device thread of ugv-imu: open the port, run the 3DM-GX1 session, publish imu_t, and
+// The adapter of ugv-imu, on a device thread of its own: open the port, run the 3DM-GX1 session, publish imu_t, and
 // recover from everything (unplug, hang-up, silence, a unit that does not answer) without
 // exiting: reopen with back-off, re-initialise, and report DEGRADED meanwhile. It publishes
 // on Daemon::out() itself, as ugv-lms does: handing each sample to the main thread cost a
@@ -13,10 +13,10 @@
 
 namespace ugv::imu_daemon {
 
-class DeviceLoop
+class ImuNode
 {
 public:
-    DeviceLoop(daemon::Daemon& daemon, const ImuConfig& config);
+    ImuNode(daemon::Daemon& daemon, const ImuConfig& config);
     // Runs until the daemon is asked to stop.
     void run();
 
@@ -31,5 +31,8 @@ private:
     int64_t seq_ = 0;
     int64_t raw_seq_ = 0;
 };
+
+// The daemon: the device thread, status and systemd until a stop signal.
+int run(daemon::Daemon& d, const ImuConfig& config);
 
 }  // namespace ugv::imu_daemon

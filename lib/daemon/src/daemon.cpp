@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <string_view>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -218,11 +219,12 @@ void Daemon::publish_status()
         err = last_error_;
     }
     auto counters = counters_.snapshot();
-    counters.emplace_back("bus_decode_failures", static_cast<int64_t>(in_->counters().decode_failures));
-    counters.emplace_back("bus_handler_errors", static_cast<int64_t>(in_->counters().handler_errors));
-    counters.emplace_back("bus_publish_failures", static_cast<int64_t>(out_->counters().publish_failures));
-    counters.emplace_back("bus_incomplete_messages", static_cast<int64_t>(in_->counters().incomplete_messages));
-    counters.emplace_back("bus_invalid_datagrams", static_cast<int64_t>(in_->counters().invalid_datagrams));
+    // The bus's counters, prefixed bus_; publishing goes through out_ (the --out log in a replay).
+    bus::BusCounters bus_counters = in_->counters();
+    bus_counters.publish_failures = out_->counters().publish_failures;
+    bus_counters.visit([&counters](std::string_view name, auto value) {
+        counters.emplace_back("bus_" + std::string(name), static_cast<int64_t>(value));
+    });
     const auto msg = make_status_message(io::now_utime(), status_seq_++, options_.name, instance_,
                                          wire_state(state_.load()), err, io::monotonic_us() - start_us_, counters);
     bus::publish(*out_, status_channel_, msg);

@@ -1,4 +1,4 @@
-// The device thread of ugv-gps: open the port, start the session (configure or passive),
+// The adapter of ugv-gps, on a device thread of its own: open the port, start the session (configure or passive),
 // decode, interpret and publish; on silence, hang-up or a failed configuration report
 // DEGRADED, close, wait (exponential back-off) and start again. Never exits on a device
 // problem; returns when the daemon is asked to stop.
@@ -11,13 +11,14 @@
 #include "ugv/daemon/daemon.hpp"
 #include "ugv/novatel/decoder.hpp"
 #include "ugv/novatel/interpreter.hpp"
+#include "ugv/novatel/session.hpp"
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 
-class ReceiverLoop
+class GpsNode
 {
 public:
-    ReceiverLoop(daemon::Daemon& daemon, GpsConfig config);
+    GpsNode(daemon::Daemon& daemon, GpsConfig config);
     void run();  // on the device thread
     // True once a session started and a fix was published (the main thread sends READY=1).
     bool data_flowing() const { return data_flowing_.load(); }
@@ -25,7 +26,7 @@ public:
 private:
     void on_message(const novatel::Decoded& message);
     bool wanted(novatel::FrameKind kind) const;
-    void update_counters();
+    void update_counters(const novatel::Session* session);
     void publish_raw(const uint8_t* data, std::size_t n, int64_t utime);
 
     daemon::Daemon& daemon_;
@@ -37,7 +38,11 @@ private:
     int64_t raw_seq_ = 0;
     uint64_t ignored_ = 0;
     uint64_t fixes_ = 0;
+    novatel::SessionCounters sessions_;  // the sums over the sessions that ended
     std::atomic<bool> data_flowing_{false};
 };
 
-}  // namespace ugv::gps
+// The daemon: the device thread, status and systemd until a stop signal.
+int run(daemon::Daemon& d, const GpsConfig& config);
+
+}  // namespace ugv::gps_daemon

@@ -1,4 +1,4 @@
-#include "lcm_convert.hpp"
+#include "terrain_messages.hpp"
 
 namespace ugv::terrain_daemon {
 

@@ -1,4 +1,4 @@
-#include "imu_message.hpp"
+#include "imu_messages.hpp"
 
 #include <limits>
 

@@ -1,13 +1,15 @@
-#include "servo_app.hpp"
+#include "servo_node.hpp"
 
 #include <cmath>
+
 #include <spdlog/spdlog.h>
 
+#include "servo_messages.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
-#include "ugv/servo_state_t.hpp"
+#include "ugv/runtime/counters.hpp"
 
-namespace ugv::servo {
+namespace ugv::servo_daemon {
 namespace {
 
 // Receive errors in a row, without a frame between, after which the transport is reopened.
@@ -15,29 +17,9 @@ constexpr int kRxErrorsBeforeReopen = 50;
 // TPDO periods per wake window: a few prompt TPDO1s per window, in case one is delayed.
 constexpr int kWakeWindowPeriods = 5;
 
-nodscan::NodCommand from_message(const servo_command_t& m, double scan_period_s)
-{
-    nodscan::NodCommand c;
-    switch (m.profile) {
-    case servo_command_t::PROFILE_STOP: c.kind = nodscan::NodKind::stop; break;
-    case servo_command_t::PROFILE_HOLD: c.kind = nodscan::NodKind::hold; break;
-    case servo_command_t::PROFILE_CONSTANT_RATE: c.kind = nodscan::NodKind::constant_rate; break;
-    case servo_command_t::PROFILE_UNIFORM_GROUND_SPACING: c.kind = nodscan::NodKind::uniform_ground_spacing; break;
-    default: c.kind = static_cast<nodscan::NodKind>(-1); break;
-    }
-    c.hold_angle_rad = m.hold_angle;
-    c.min_tilt_rad = m.min_tilt;
-    c.max_tilt_rad = m.max_tilt;
-    c.rate_rad_s = m.rate;
-    c.ground_spacing_m = m.ground_spacing;
-    c.sensor_height_m = m.sensor_height;
-    c.scan_period_s = scan_period_s;
-    return c;
-}
-
 }  // namespace
 
-ServoApp::ServoApp(daemon::Daemon& d, ServoConfig config)
+ServoNode::ServoNode(daemon::Daemon& d, ServoConfig config)
     : d_(d),
       config_(std::move(config)),
       transport_(io::make_can_transport(config_.transport, config_.bitrate)),
@@ -45,16 +27,12 @@ ServoApp::ServoApp(daemon::Daemon& d, ServoConfig config)
       nod_(config_.nod),
       backoff_(100'000, 1'000'000)  // at most 1 s: a drive or adapter that is back runs within ~1.5 s
 {
-    for (const char* n : {"sdo_timeouts", "sdo_aborts", "emcy", "heartbeat_losses", "faults", "fault_resets",
-                          "enable_failures", "bus_errors", "reconnects", "reinits", "tx_failures",
-                          "setpoint_timeouts", "commands_accepted", "commands_refused", "samples", "rx_errors",
-                          "tpdo_implausible", "clock_restarts"})
-        d_.counters()[n] = 0;
+    sync_counters();  // every counter is listed from the first status message on
 }
 
-double ServoApp::now_s() const { return static_cast<double>(io::monotonic_us()) * 1e-6; }
+double ServoNode::now_s() const { return static_cast<double>(io::monotonic_us()) * 1e-6; }
 
-void ServoApp::start()
+void ServoNode::start()
 {
     bus::subscribe<servo_command_t>(d_.bus(), config_.command_channel,
                                     [this](const std::string&, const servo_command_t& m, int64_t) { on_command(m); });
@@ -63,7 +41,7 @@ void ServoApp::start()
     open_transport();
 }
 
-void ServoApp::open_transport()
+void ServoNode::open_transport()
 {
     if (!transport_->open()) {
         const int64_t wait = backoff_.next();
@@ -75,7 +53,7 @@ void ServoApp::open_transport()
     transport_open_ = true;
     restart_scheduled_ = false;
     rx_errors_in_a_row_ = 0;
-    if (ever_opened_) ++reconnects_;
+    if (ever_opened_) ++counters_.reconnects;
     ever_opened_ = true;
     watch_fd(true);
     spdlog::info("{} open at {} bit/s; configuring node {}", transport_->describe(), config_.bitrate,
@@ -84,7 +62,7 @@ void ServoApp::open_transport()
     flush_outgoing();
 }
 
-void ServoApp::watch_fd(bool on)
+void ServoNode::watch_fd(bool on)
 {
     if (on && registered_fd_ < 0 && transport_open_) {
         registered_fd_ = transport_->fd();
@@ -95,7 +73,7 @@ void ServoApp::watch_fd(bool on)
     }
 }
 
-bool ServoApp::want_frame_wakeups(int64_t now_us) const
+bool ServoNode::want_frame_wakeups(int64_t now_us) const
 {
     if (!drive_.operational()) return true;  // configuring, enabling: SDO answers at once
     if (transport_->stamps_arrival()) return false;
@@ -104,7 +82,7 @@ bool ServoApp::want_frame_wakeups(int64_t now_us) const
     return now_us % config_.frame_wakeup_period_us < window_us;
 }
 
-void ServoApp::close_transport(const std::string& why)
+void ServoNode::close_transport(const std::string& why)
 {
     watch_fd(false);
     transport_->close();
@@ -114,9 +92,9 @@ void ServoApp::close_transport(const std::string& why)
     d_.set_state(daemon::State::degraded, why);
 }
 
-void ServoApp::reinitialise(const std::string& why)
+void ServoNode::reinitialise(const std::string& why)
 {
-    ++reinits_;
+    ++counters_.reinits;
     d_.notify_status("DEGRADED: " + why);
     was_operational_ = false;
     d_.set_state(daemon::State::degraded, why);
@@ -124,7 +102,7 @@ void ServoApp::reinitialise(const std::string& why)
     retry_at_us_ = io::monotonic_us() + backoff_.next();
 }
 
-void ServoApp::drain_transport(bool prompt)
+void ServoNode::drain_transport(bool prompt)
 {
     const bool read_late = !prompt && !transport_->stamps_arrival();
     for (int guard = 0; guard < 1000 && transport_open_; ++guard) {
@@ -137,14 +115,14 @@ void ServoApp::drain_transport(bool prompt)
         }
         if (r.status == io::CanReceive::Status::error && ++rx_errors_in_a_row_ < kRxErrorsBeforeReopen) {
             // A malformed slcan line (line noise, a byte lost) or one failed read: dropped.
-            ++rx_errors_;
+            ++counters_.rx_errors;
             drive_.note_lost_frame();
             log_.log(spdlog::level::warn, "rx", "receive error: " + r.detail, io::monotonic_us());
             continue;
         }
         if (r.status == io::CanReceive::Status::bus_error) {
             // Bus-off or an adapter error: the controller needs an explicit restart.
-            ++bus_errors_;
+            ++counters_.bus_errors;
             log_.log(spdlog::level::warn, "bus", "bus error: " + r.detail + "; restarting the CAN interface",
                      io::monotonic_us());
             close_transport("bus error: " + r.detail);
@@ -159,7 +137,7 @@ void ServoApp::drain_transport(bool prompt)
     log_events();
 }
 
-void ServoApp::control_tick()
+void ServoNode::control_tick()
 {
     const int64_t now = io::monotonic_us();
     if (!transport_open_) {
@@ -215,38 +193,27 @@ void ServoApp::control_tick()
     watch_fd(transport_open_ && want_frame_wakeups(now));
 }
 
-void ServoApp::flush_outgoing()
+void ServoNode::flush_outgoing()
 {
     for (const auto& f : drive_.take_outgoing()) {
         if (!transport_open_) break;
         if (!transport_->send(f)) {
-            ++tx_failures_;  // e.g. ENOBUFS on a busy bus: the session's timeouts retry
+            ++counters_.tx_failures;  // e.g. ENOBUFS on a busy bus: the session's timeouts retry
             log_.log(spdlog::level::warn, "tx", "send failed: " + transport_->last_error(), io::monotonic_us());
         }
     }
 }
 
-void ServoApp::publish_samples()
+void ServoNode::publish_samples()
 {
     for (const auto& s : drive_.take_samples()) {
-        servo_state_t m;
-        m.utime = s.utime;
-        m.seq = seq_++;
-        m.angle = s.angle_rad;
-        m.velocity = s.velocity_rad_s;
-        m.target = s.target_rad;
-        m.profile = static_cast<int8_t>(nod_.kind());
-        m.cia402_state = static_cast<int8_t>(s.state);
-        m.statusword = static_cast<int16_t>(s.statusword);
-        m.fault = s.state == canopen::cia402::State::fault || s.state == canopen::cia402::State::fault_reaction_active;
-        m.fault_code = drive_.last_emcy_code();
-        bus::publish(d_.out(), config_.channel, m);
-        ++samples_;
+        bus::publish(d_.out(), config_.channel, to_message(s, nod_.kind(), drive_.last_emcy_code(), seq_++));
+        ++counters_.samples;
         if (drive_.operational()) d_.mark_alive();
     }
 }
 
-void ServoApp::log_events()
+void ServoNode::log_events()
 {
     for (const auto& e : drive_.take_events()) {
         const auto level = e.level == canopen::DriveEvent::Level::error     ? spdlog::level::err
@@ -256,44 +223,26 @@ void ServoApp::log_events()
     }
 }
 
-void ServoApp::on_command(const servo_command_t& msg)
+void ServoNode::on_command(const servo_command_t& msg)
 {
     const auto cmd = from_message(msg, config_.default_profile.scan_period_s);
     const auto last = drive_.last_sample();
     if (auto why = nod_.apply(cmd, now_s(), last ? last->angle_rad : 0.0)) {
-        ++commands_refused_;
+        ++counters_.commands_refused;
         spdlog::warn("SERVO_COMMAND refused: {}", *why);
         return;
     }
-    ++commands_accepted_;
+    ++counters_.commands_accepted;
     spdlog::info("profile {}", nodscan::to_string(cmd.kind));
 }
 
-void ServoApp::sync_counters()
+void ServoNode::sync_counters()
 {
-    const auto c = drive_.counters();
-    auto& k = d_.counters();
-    k["sdo_timeouts"] = static_cast<int64_t>(c.sdo_timeouts);
-    k["sdo_aborts"] = static_cast<int64_t>(c.sdo_aborts);
-    k["emcy"] = static_cast<int64_t>(c.emcy);
-    k["heartbeat_losses"] = static_cast<int64_t>(c.heartbeat_losses);
-    k["faults"] = static_cast<int64_t>(c.faults);
-    k["fault_resets"] = static_cast<int64_t>(c.fault_resets);
-    k["enable_failures"] = static_cast<int64_t>(c.enable_failures);
-    k["setpoint_timeouts"] = static_cast<int64_t>(c.setpoint_timeouts);
-    k["bus_errors"] = static_cast<int64_t>(bus_errors_);
-    k["reconnects"] = static_cast<int64_t>(reconnects_);
-    k["reinits"] = static_cast<int64_t>(reinits_);
-    k["tx_failures"] = static_cast<int64_t>(tx_failures_);
-    k["commands_accepted"] = static_cast<int64_t>(commands_accepted_);
-    k["commands_refused"] = static_cast<int64_t>(commands_refused_);
-    k["samples"] = static_cast<int64_t>(samples_);
-    k["rx_errors"] = static_cast<int64_t>(rx_errors_);
-    k["tpdo_implausible"] = static_cast<int64_t>(c.tpdo_implausible);
-    k["clock_restarts"] = static_cast<int64_t>(c.clock_restarts);
+    runtime::set_all(d_.counters(), drive_.counters());
+    runtime::set_all(d_.counters(), counters_);
 }
 
-void ServoApp::shutdown()
+void ServoNode::shutdown()
 {
     if (!transport_open_) return;
     const int64_t start = io::monotonic_us();
@@ -315,4 +264,13 @@ void ServoApp::shutdown()
     transport_open_ = false;
 }
 
-}  // namespace ugv::servo
+int run(daemon::Daemon& d, ServoConfig config)
+{
+    ServoNode node(d, std::move(config));
+    node.start();
+    const int rc = d.run();
+    node.shutdown();  // halt, then disable
+    return rc;
+}
+
+}  // namespace ugv::servo_daemon

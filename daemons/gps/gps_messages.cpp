@@ -1,8 +1,8 @@
-#include "lcm_messages.hpp"
+#include "gps_messages.hpp"
 
 #include <algorithm>
 
-namespace ugv::gps {
+namespace ugv::gps_daemon {
 namespace {
 
 int8_t small_count(int n) { return static_cast<int8_t>(std::clamp(n, -1, 127)); }
@@ -48,4 +48,4 @@ ugv::gps_velocity_t to_message(const novatel::VelocityFix& v, int64_t seq)
     return m;
 }
 
-}  // namespace ugv::gps
+}  // namespace ugv::gps_daemon
