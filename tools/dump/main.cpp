@@ -9,10 +9,10 @@
 #include <CLI/CLI.hpp>
 
 #include "ugv/bus/bus.hpp"
-#include "ugv/daemon/daemon.hpp"
 #include "ugv/dump/dump_filter.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/reflect.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 
 int main(int argc, char** argv)
 {
@@ -65,9 +65,9 @@ int main(int argc, char** argv)
         filter->printed();
     });
 
-    ugv::daemon::install_stop_signals();
+    ugv::runtime::install_stop_signals();
     const int64_t deadline = timeout_s > 0 ? ugv::io::monotonic_us() + static_cast<int64_t>(timeout_s * 1e6) : INT64_MAX;
-    while (!filter->done() && !ugv::daemon::stop_signal_received() && ugv::io::monotonic_us() < deadline) {
+    while (!filter->done() && !ugv::runtime::stop_requested() && ugv::io::monotonic_us() < deadline) {
         const auto r = bus->handle(50);
         if (r == ugv::bus::HandleResult::end || r == ugv::bus::HandleResult::error) break;
     }

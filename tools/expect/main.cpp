@@ -7,10 +7,10 @@
 #include <CLI/CLI.hpp>
 
 #include "ugv/bus/bus.hpp"
-#include "ugv/daemon/daemon.hpp"
 #include "ugv/expect/expectation.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/reflect.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 
 int main(int argc, char** argv)
 {
@@ -67,9 +67,9 @@ int main(int argc, char** argv)
             if (o.where_failed++ == 0) o.first_failing = json;
         }
     });
-    ugv::daemon::install_stop_signals();
+    ugv::runtime::install_stop_signals();
     const int64_t give_up = ugv::io::monotonic_us() + static_cast<int64_t>(wait_s * 1e6);
-    while (!ugv::daemon::stop_signal_received()) {
+    while (!ugv::runtime::stop_requested()) {
         const int64_t now = ugv::io::monotonic_us();
         if (window_end != 0 && now > window_end) break;
         if (window_end == 0 && now > give_up) break;

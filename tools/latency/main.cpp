@@ -10,11 +10,11 @@
 #include <CLI/CLI.hpp>
 
 #include "ugv/bus/bus.hpp"
-#include "ugv/daemon/daemon.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/latency/latency_meter.hpp"
 #include "ugv/logstat/channel_stats.hpp"
 #include "ugv/runtime/realtime.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 
 int main(int argc, char** argv)
 {
@@ -55,9 +55,9 @@ int main(int argc, char** argv)
             meter.on_to(recv);
         }
     });
-    ugv::daemon::install_stop_signals();
+    ugv::runtime::install_stop_signals();
     const int64_t end = ugv::io::monotonic_us() + static_cast<int64_t>(seconds * 1e6);
-    while (!ugv::daemon::stop_signal_received() && ugv::io::monotonic_us() < end) bus->handle(20);
+    while (!ugv::runtime::stop_requested() && ugv::io::monotonic_us() < end) bus->handle(20);
     const auto s = meter.summary();
     std::printf("%s -> %s: %zu samples, latency p50 %.0f us, p99 %.0f us, max %.0f us, min %.0f us\n",
                 from.empty() ? (to + ".utime").c_str() : from.c_str(), to.c_str(), s.samples, s.p50_us, s.p99_us, s.max_us,

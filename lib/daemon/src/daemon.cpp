@@ -15,6 +15,7 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/realtime.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 
 namespace ugv::daemon {
 
@@ -160,7 +161,7 @@ void Daemon::start()
     } catch (const bus::BusError& e) {
         exit_config_error(options_.name + ": " + e.what());
     }
-    install_stop_signals();
+    runtime::install_stop_signals();
     start_us_ = io::monotonic_us();
     spdlog::info("{} {} started on {}", options_.name, UGV_VERSION, in_->describe());
 }
@@ -204,7 +205,7 @@ void Daemon::add_timer(int64_t period_us, std::function<void()> fn)
     timers_.push_back(std::make_unique<Timer>(Timer{period_us, io::monotonic_us() + period_us, std::move(fn)}));
 }
 
-bool Daemon::stop_requested() const { return stop_signal_received() || stop_flag_.load(); }
+bool Daemon::stop_requested() const { return runtime::stop_requested() || stop_flag_.load(); }
 
 void Daemon::request_stop()
 {
@@ -271,7 +272,7 @@ int Daemon::run()
         });
     publish_status();
 
-    const int stop_fd = install_stop_signals();
+    const int stop_fd = runtime::install_stop_signals();
     std::vector<pollfd> pfds;
     while (!stop_requested()) {
         pfds.clear();

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "drive_emulator.hpp"
 #include "nod_controller.hpp"
+#include "servo_emulator.hpp"
 #include "ugv/canopen/drive.hpp"
 
 using namespace ugv;

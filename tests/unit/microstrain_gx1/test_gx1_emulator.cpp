@@ -1,11 +1,11 @@
-// The emulator's logic (tools/sim/imu/gx1_emulator.cpp): its answers decode with the driver's
+// The emulator's logic (tools/sim/imu/imu_emulator.cpp): its answers decode with the driver's
 // codec to what it was configured with; confirmations, streaming schedule, faults.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
+#include "imu_emulator.hpp"
 #include "ugv/microstrain_gx1/frame_parser.hpp"
-#include "ugv/sim/imu/gx1_emulator.hpp"
 
 using namespace ugv::microstrain_gx1;
 using ugv::sim::imu::EmulatorConfig;

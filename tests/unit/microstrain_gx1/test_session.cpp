@@ -6,9 +6,9 @@
 #include <random>
 #include <thread>
 
+#include "imu_emulator.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/microstrain_gx1/session.hpp"
-#include "ugv/sim/imu/gx1_emulator.hpp"
 
 using namespace ugv::microstrain_gx1;
 using ugv::sim::imu::EmulatorConfig;

@@ -9,9 +9,9 @@
 #include <string>
 #include <thread>
 
+#include "gps_emulator.hpp"
 #include "ugv/io/byte_stream.hpp"
 #include "ugv/io/clock.hpp"
-#include "ugv/sim/gps_emulator.hpp"
 
 namespace ugv::novatel::test {
 

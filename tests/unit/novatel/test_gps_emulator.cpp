@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "capture_file.hpp"
+#include "gps_emulator.hpp"
 #include "ugv/novatel/checksum.hpp"
 #include "ugv/novatel/decoder.hpp"
 #include "ugv/novatel/enums.hpp"
-#include "ugv/sim/gps_emulator.hpp"
 
 using namespace ugv::sim::gps;
 using namespace ugv::novatel;

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "lms_device.hpp"
+#include "lms_emulator.hpp"
 #include "ugv/io/byte_stream.hpp"
 
 namespace ugv::test {

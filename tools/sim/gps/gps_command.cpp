@@ -3,10 +3,8 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -15,15 +13,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "gps_emulator.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
-#include "ugv/sim/gps_emulator.hpp"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
 
 // Writes what the slave side can take; a full line drops the rest, as a UART would.
 void write_some(int fd, const std::string& bytes)
@@ -90,9 +86,7 @@ int gps_main(int argc, char** argv)
         std::fprintf(stderr, "%s: --fix-script: %s\n", argv[0], e.what());
         return 2;
     }
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    std::signal(SIGPIPE, SIG_IGN);
+    ugv::runtime::install_stop_signals();
 
     auto pty = std::make_unique<ugv::io::Pty>(pty_path);
     const int64_t start = ugv::io::now_utime();
@@ -102,7 +96,7 @@ int gps_main(int argc, char** argv)
                  pty->slave_path().c_str(), cfg.baud);
     bool unplugged_done = false;
     uint8_t buf[512];
-    while (!g_stop) {
+    while (!ugv::runtime::stop_requested()) {
         const int64_t now = ugv::io::now_utime();
         const double elapsed = static_cast<double>(now - start) * 1e-6;
         if (duration_s > 0 && elapsed >= duration_s) {

@@ -1,4 +1,4 @@
-#include "ugv/sim/gps_emulator.hpp"
+#include "gps_emulator.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -7,7 +7,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -17,19 +16,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "imu_emulator.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
-#include "ugv/sim/line_faults.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
-#include "ugv/sim/imu/gx1_emulator.hpp"
+#include "ugv/sim/line_faults.hpp"
 
 namespace {
 
 using ugv::sim::imu::EmulatorConfig;
 using ugv::sim::imu::Gx1Emulator;
-
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
 
 constexpr double deg = 3.14159265358979323846 / 180.0;
 
@@ -118,8 +115,7 @@ int imu_main(int argc, char** argv)
     cfg.attitude = attitude == "level" ? ugv::sim::imu::fixed_attitude(roll_deg * deg, pitch_deg * deg, heading_deg * deg)
                                        : ugv::sim::imu::slow_yaw(heading_deg * deg, yaw_rate_dps * deg);
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    ugv::runtime::install_stop_signals();
     std::unique_ptr<ugv::io::Pty> pty;
     try {
         pty = std::make_unique<ugv::io::Pty>(pty_path);
@@ -142,7 +138,7 @@ int imu_main(int argc, char** argv)
     std::fprintf(stderr, "%s: 3DM-GX1 on %s (%s), %d baud\n", argv[0], pty->path().c_str(), pty->slave_path().c_str(), baud);
 
     std::vector<uint8_t> buf(256);
-    while (!g_stop) {
+    while (!ugv::runtime::stop_requested()) {
         const double t = now_s();
         const double age = t - start_s;
         if (duration_s > 0 && age >= duration_s) break;

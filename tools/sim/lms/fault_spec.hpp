@@ -13,7 +13,7 @@
 
 #include <string>
 
-#include "lms_device.hpp"
+#include "lms_emulator.hpp"
 
 namespace ugv::sim::lms {
 

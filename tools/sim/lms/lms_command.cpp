@@ -4,9 +4,7 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -18,17 +16,15 @@
 #include <CLI/CLI.hpp>
 
 #include "fault_spec.hpp"
-#include "lms_device.hpp"
+#include "lms_emulator.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
 
 namespace {
 
 using namespace ugv::sim::lms;
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -69,7 +65,7 @@ bool serve(const std::string& path, const DeviceOptions& options, const FaultPla
     std::vector<uint8_t> in(4096), out;
     int last_baud = -1, last_device_baud = device.baud();
     bool was_streaming = device.streaming();
-    while (!g_stop) {
+    while (!ugv::runtime::stop_requested()) {
         int64_t now = ugv::io::monotonic_us();
         if (now >= die_us) {
             std::fprintf(stderr, "ugv-sim lms: fault: disappearing for %.1f s\n", plan.disappear_for_s);
@@ -154,13 +150,13 @@ int lms_main(int argc, char** argv)
     options.initially_streaming = streaming;
     options.password = password;
 
-    ugv::sim::install_stop_handler(on_signal);
+    ugv::runtime::install_stop_signals();
     try {
         while (serve(path, options, plan, verbose)) {
             // Unplugged: gone for a while, then a freshly powered device appears.
             const int64_t back = ugv::io::monotonic_us() + static_cast<int64_t>(plan.disappear_for_s * 1e6);
-            while (!g_stop && ugv::io::monotonic_us() < back) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-            if (g_stop) break;
+            while (!ugv::runtime::stop_requested() && ugv::io::monotonic_us() < back) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            if (ugv::runtime::stop_requested()) break;
             options.initial_baud = 9600;
             options.initially_streaming = false;
             ++options.seed;

@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "drive_emulator.hpp"
-#include "lms_device.hpp"
+#include "gps_emulator.hpp"
+#include "imu_emulator.hpp"
+#include "lms_emulator.hpp"
+#include "servo_emulator.hpp"
 #include "slcan_adapter.hpp"
 #include "ugv/io/pty.hpp"
-#include "ugv/sim/gps_emulator.hpp"
-#include "ugv/sim/imu/gx1_emulator.hpp"
 #include "ugv/simworld/world.hpp"
 
 namespace ugv::sim::world {

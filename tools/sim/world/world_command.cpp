@@ -14,9 +14,7 @@
 #include <poll.h>
 #include <sys/stat.h>
 
-#include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -34,6 +32,7 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/config.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
 #include "ugv/sim_truth_t.hpp"
 
@@ -41,9 +40,6 @@ namespace {
 
 using namespace ugv::sim::world;
 namespace sw = ugv::simworld;
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
 
 ugv::sim_truth_t truth_message(const sw::World& world, const sw::TruthState& s, double tilt_rad, int64_t seq,
                                const std::string& scenario_name)
@@ -107,7 +103,7 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
     int64_t next_truth = start, seq = 0;
     std::size_t dropped = 0;
     LoopLateness lateness;
-    while (!g_stop) {
+    while (!ugv::runtime::stop_requested()) {
         for (std::size_t i = 0; i < all.size(); ++i) fds[i] = {all[i]->fd(), POLLIN, 0};
         ::poll(fds.data(), fds.size(), 1);
         const int64_t now = ugv::io::now_utime();
@@ -125,7 +121,7 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
         }
     }
     std::fprintf(stderr, "ugv-sim world: %s; %lld truth messages, %zu device bytes not taken by the host\n",
-                 g_stop ? "stopped" : "scenario done", static_cast<long long>(seq), dropped);
+                 ugv::runtime::stop_requested() ? "stopped" : "scenario done", static_cast<long long>(seq), dropped);
     for (const DevicePort* p : all) std::fprintf(stderr, "ugv-sim world: %s\n", p->summary().c_str());
     std::fprintf(stderr, "ugv-sim world: %s\n", lateness.summary().c_str());
     return 0;
@@ -170,7 +166,7 @@ int world_main(int argc, char** argv)
         text = ss.str();
         name = scenario_path;
     }
-    ugv::sim::install_stop_handler(on_signal);
+    ugv::runtime::install_stop_signals();
     try {
         return run(dir, text, name, url, duration_s, seed);
     } catch (const ugv::runtime::ConfigError& e) {

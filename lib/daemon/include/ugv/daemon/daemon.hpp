@@ -129,9 +129,4 @@ private:
     std::vector<std::unique_ptr<Timer>> timers_;
 };
 
-// Installs SIGINT/SIGTERM handlers that set a flag and write to a pipe; returns the pipe's
-// read end for poll(). Called by Daemon; exposed for tools (ugv-sim, ugv-dump).
-int install_stop_signals();
-bool stop_signal_received();
-
 }  // namespace ugv::daemon

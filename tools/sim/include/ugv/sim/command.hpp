@@ -1,9 +1,9 @@
 // ugv-sim subcommands. Each emulator (tools/sim/<device>/) registers one with
 //   UGV_SIM_COMMAND("lms", "SICK LMS 2xx on a pseudo-terminal", lms_main);
 // and `ugv-sim lms --pty PATH ...` calls lms_main(argc, argv) with argv[0] = "ugv-sim lms".
+// Stop signals: ugv/runtime/stop_signals.hpp, as in every daemon and tool.
 #pragma once
 
-#include <csignal>
 #include <map>
 #include <string>
 
@@ -18,17 +18,6 @@ struct Command
 };
 
 std::map<std::string, Command>& commands();
-
-// SIGINT and SIGTERM call on_stop (without SA_RESTART, so a blocking poll() returns);
-// SIGPIPE is ignored (a host that closes the pty must not kill the emulator).
-inline void install_stop_handler(void (*on_stop)(int))
-{
-    struct sigaction sa{};
-    sa.sa_handler = on_stop;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-    std::signal(SIGPIPE, SIG_IGN);
-}
 
 struct CommandRegistration
 {

@@ -1,4 +1,4 @@
-#include "lms_device.hpp"
+#include "lms_emulator.hpp"
 
 #include <algorithm>
 #include <cmath>

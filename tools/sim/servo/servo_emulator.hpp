@@ -5,6 +5,8 @@
 // CiA 402 state machine, profile position mode with the set-point handshake and the halt
 // bit, and a position loop with velocity and acceleration limits and an integer encoder.
 // Faults (with EMCY) and a heartbeat loss (the node drops off the bus) happen on request.
+// The rest of the servo emulator's model: SlcanAdapter (slcan_adapter.hpp, bus <-> serial
+// line) and SerialLineFaults; servo_command.cpp puts them on a pty.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "ugv/sim/imu/gx1_emulator.hpp"
+#include "imu_emulator.hpp"
 
 #include <algorithm>
 #include <cmath>

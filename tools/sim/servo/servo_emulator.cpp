@@ -1,4 +1,4 @@
-#include "drive_emulator.hpp"
+#include "servo_emulator.hpp"
 
 #include <algorithm>
 #include <cmath>

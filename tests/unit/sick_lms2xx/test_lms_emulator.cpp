@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "fault_spec.hpp"
-#include "lms_device.hpp"
+#include "lms_emulator.hpp"
 #include "ugv/sick_lms2xx/decoder.hpp"
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/requests.hpp"

@@ -1,5 +1,6 @@
 // ugv-sim servo --pty PATH [--node-id N] ...: the emulated drive and slcan adapter served on
-// a pseudo-terminal. Only the I/O lives here; the logic is DriveEmulator and SlcanAdapter.
+// a pseudo-terminal. Only the I/O and the CLI live here; the logic is DriveEmulator
+// (servo_emulator.hpp) and SlcanAdapter.
 //   SIGUSR1 raises a fault (EMCY 0x8611 following error); SIGUSR2 drops the node off the bus
 //   for --loss-duration seconds (its heartbeat stops); SIGHUP puts the adapter's controller
 //   bus-off (BEL, then silence until the host closes and reopens). --fault-after/--loss-after schedule
@@ -16,51 +17,33 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
 
-#include "drive_emulator.hpp"
+#include <CLI/CLI.hpp>
+
 #include "serial_line_faults.hpp"
+#include "servo_emulator.hpp"
 #include "slcan_adapter.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/pty.hpp"
 #include "ugv/io/slcan_codec.hpp"
+#include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
 
 namespace {
 
-std::atomic<bool> g_stop{false};
+// The fault signals stay this command's own; SIGINT/SIGTERM are the shared stop signals.
 std::atomic<int> g_faults{0};
 std::atomic<int> g_losses{0};
 std::atomic<int> g_bus_offs{0};
 
-void on_signal(int sig)
+void on_fault_signal(int sig)
 {
     if (sig == SIGUSR1) g_faults.fetch_add(1);
     else if (sig == SIGUSR2) g_losses.fetch_add(1);
     else if (sig == SIGHUP) g_bus_offs.fetch_add(1);
-    else g_stop.store(true);
-}
-
-void usage(FILE* out)
-{
-    std::fprintf(out,
-                 "usage: ugv-sim servo --pty PATH [--node-id N] [--initial-deg A] [--counts-per-rad C]\n"
-                 "                     [--fault-after S] [--loss-after S] [--loss-duration S]\n"
-                 "                     [--bit-error-rate P] [--truncate-every N] [--garbage-every S]\n"
-                 "                     [--garbage-bytes N] [--seed N] [--bus-bitrate B] [--refuse-tx-every N]\n"
-                 "                     [--serial-baud B]\n"
-                 "  A CiA 402 servo drive behind an slcan adapter on a pseudo-terminal (symlink PATH).\n"
-                 "  SIGUSR1: raise a fault (EMCY 0x8611). SIGUSR2: drop off the bus for --loss-duration s.\n"
-                 "  SIGHUP: the adapter's controller goes bus-off (BEL; silent until closed and reopened).\n"
-                 "  Faults on the adapter's output: --bit-error-rate P (per byte, one random bit flipped),\n"
-                 "  --truncate-every N (every N-th frame line cut short before its CR), --garbage-every S\n"
-                 "  (--garbage-bytes random bytes between lines every S seconds), --seed N. The adapter:\n"
-                 "  --bus-bitrate B (the bus runs at B bit/s: nothing passes unless the host set B),\n"
-                 "  --refuse-tx-every N (every N-th transmit answered BEL), --serial-baud B (its serial side\n"
-                 "  runs at B: a host at another rate is not understood and hears noise).\n");
 }
 
 // Writes what the host will take within ~10 ms; the rest is dropped (returned false), as a
@@ -85,6 +68,7 @@ bool write_some(int fd, const std::string& s)
 
 int servo_main(int argc, char** argv)
 {
+    CLI::App app{"A CiA 402 servo drive behind an slcan adapter on a pseudo-terminal", argv[0]};
     std::string pty_path;
     int node = 1;
     double initial_deg = 0.0, counts_per_rad = 4096.0 * 50.0 / (2.0 * M_PI);
@@ -94,50 +78,50 @@ int servo_main(int argc, char** argv)
     unsigned refuse_tx_every = 0;
     ugv::sim::servo::SerialLineFaultConfig line_faults;
     line_faults.garbage_bytes = 16;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> const char* {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "ugv-sim servo: %s needs a value\n", a.c_str());
-                std::exit(2);
-            }
-            return argv[++i];
-        };
-        if (a == "--pty") pty_path = value();
-        else if (a == "--node-id") node = std::atoi(value());
-        else if (a == "--initial-deg") initial_deg = std::atof(value());
-        else if (a == "--counts-per-rad") counts_per_rad = std::atof(value());
-        else if (a == "--fault-after") fault_after = std::atof(value());
-        else if (a == "--loss-after") loss_after = std::atof(value());
-        else if (a == "--loss-duration") loss_duration = std::atof(value());
-        else if (a == "--bit-error-rate") line_faults.bit_error_rate = std::atof(value());
-        else if (a == "--truncate-every") line_faults.truncate_every = static_cast<unsigned>(std::atoi(value()));
-        else if (a == "--garbage-every") garbage_every_s = std::atof(value());
-        else if (a == "--garbage-bytes") line_faults.garbage_bytes = static_cast<std::size_t>(std::atoi(value()));
-        else if (a == "--seed") line_faults.seed = static_cast<unsigned>(std::atoi(value()));
-        else if (a == "--bus-bitrate") bus_bitrate = std::atoi(value());
-        else if (a == "--refuse-tx-every") refuse_tx_every = static_cast<unsigned>(std::atoi(value()));
-        else if (a == "--serial-baud") serial_baud = std::atoi(value());
-        else if (a == "--help" || a == "-h") {
-            usage(stdout);
-            return 0;
-        } else {
-            std::fprintf(stderr, "ugv-sim servo: unknown option %s\n", a.c_str());
-            usage(stderr);
-            return 2;
-        }
+    app.add_option("--pty", pty_path, "symlink to create for the adapter's serial port")->required();
+    app.add_option("--node-id", node, "the drive's CANopen node id")->check(CLI::Range(1, 127))->capture_default_str();
+    app.add_option("--initial-deg", initial_deg, "the axis at power-on (deg)")->capture_default_str();
+    app.add_option("--counts-per-rad", counts_per_rad, "encoder counts per radian of the axis")->capture_default_str();
+    app.add_option("--fault-after", fault_after, "raise the fault S seconds after the drive was first enabled (< 0: never)")
+        ->capture_default_str();
+    app.add_option("--loss-after", loss_after, "drop off the bus S seconds after the drive was first enabled (< 0: never)")
+        ->capture_default_str();
+    app.add_option("--loss-duration", loss_duration, "how long a drop off the bus lasts (s)")->capture_default_str();
+    app.add_option("--bit-error-rate", line_faults.bit_error_rate, "per byte the adapter sends, one random bit flipped")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--truncate-every", line_faults.truncate_every, "every N-th frame line cut short before its CR (0 = never)");
+    app.add_option("--garbage-every", garbage_every_s, "--garbage-bytes random bytes between lines every S seconds (0 = never)");
+    app.add_option("--garbage-bytes", line_faults.garbage_bytes, "bytes per garbage burst")->capture_default_str();
+    app.add_option("--seed", line_faults.seed, "seed of the line faults")->capture_default_str();
+    app.add_option("--bus-bitrate", bus_bitrate, "the bus runs at B bit/s: nothing passes unless the host set B (0 = any)");
+    app.add_option("--refuse-tx-every", refuse_tx_every, "every N-th transmit answered BEL (0 = never)");
+    app.add_option("--serial-baud", serial_baud, "the adapter's serial side runs at B: a host at another rate is not "
+                                                 "understood and hears noise (0 = any)")
+        ->check(CLI::NonNegativeNumber);
+    app.footer("Signals: SIGUSR1 raises a fault (EMCY 0x8611 following error). SIGUSR2 drops the node off the bus\n"
+               "for --loss-duration s. SIGHUP puts the adapter's controller bus-off (BEL; silent until the host\n"
+               "closes and reopens). SIGINT/SIGTERM stop.");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
     }
     const auto bus_bitrate_command = ugv::io::slcan::encode_bitrate(bus_bitrate);
-    if (pty_path.empty() || node < 1 || node > 127 || line_faults.bit_error_rate < 0 ||
-        line_faults.bit_error_rate > 1 || (bus_bitrate != 0 && !bus_bitrate_command) || serial_baud < 0) {
-        usage(stderr);
+    if (pty_path.empty()) {
+        std::fprintf(stderr, "%s: --pty: an empty path\n", argv[0]);
+        return 2;
+    }
+    if (bus_bitrate != 0 && !bus_bitrate_command) {
+        std::fprintf(stderr, "%s: --bus-bitrate %d: not a CAN rate an slcan adapter sets (10000 ... 1000000)\n", argv[0],
+                     bus_bitrate);
         return 2;
     }
 
+    ugv::runtime::install_stop_signals();
     struct sigaction sa{};
-    sa.sa_handler = on_signal;
+    sa.sa_handler = on_fault_signal;
     sigemptyset(&sa.sa_mask);
-    for (int s : {SIGINT, SIGTERM, SIGUSR1, SIGUSR2, SIGHUP}) sigaction(s, &sa, nullptr);
+    for (int sig : {SIGUSR1, SIGUSR2, SIGHUP}) sigaction(sig, &sa, nullptr);
 
     ugv::io::Pty pty(pty_path);
     ::fcntl(pty.master_fd(), F_SETFL, ::fcntl(pty.master_fd(), F_GETFL) | O_NONBLOCK);
@@ -159,7 +143,7 @@ int servo_main(int argc, char** argv)
     int faults_seen = 0, losses_seen = 0, bus_offs_seen = 0;
     uint64_t dropped_writes = 0;
     std::mt19937 noise(line_faults.seed);
-    while (!g_stop.load()) {
+    while (!ugv::runtime::stop_requested()) {
         // A host at another serial rate samples the wrong bit cells both ways.
         const bool rate_matches = serial_baud == 0 || pty.slave_baud() == serial_baud;
         pollfd p{pty.master_fd(), POLLIN, 0};
