@@ -95,7 +95,7 @@ void NodscanNode::assemble(const laser_scan_t& scan)
     out.utime = cloud_.utime;
     out.seq = seq_++;
     out.sensor_id = scan.sensor_id;
-    for (std::size_t i = 0; i < 3; ++i) out.sensor_origin[i] = cloud_.sensor_origin[i];
+    for (int i = 0; i < 3; ++i) out.sensor_origin[i] = cloud_.sensor_origin(i);
     out.npoints = static_cast<int32_t>(cloud_.size());
     out.x = cloud_.x;
     out.y = cloud_.y;
