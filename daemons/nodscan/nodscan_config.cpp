@@ -7,9 +7,9 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-nodscan::Vec3 vec3(const std::vector<double>& v, double scale = 1.0)
+Eigen::Vector3d vec3(const std::vector<double>& v, double scale = 1.0)
 {
-    return {v[0] * scale, v[1] * scale, v[2] * scale};
+    return Eigen::Vector3d(v[0] * scale, v[1] * scale, v[2] * scale);
 }
 
 }  // namespace

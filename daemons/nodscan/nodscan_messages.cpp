@@ -23,7 +23,7 @@ point_cloud_t to_message(const nodscan::PointCloud& cloud, const std::string& se
     out.utime = cloud.utime;
     out.seq = seq;
     out.sensor_id = sensor_id;
-    for (std::size_t i = 0; i < 3; ++i) out.sensor_origin[i] = cloud.sensor_origin[i];
+    for (int i = 0; i < 3; ++i) out.sensor_origin[i] = cloud.sensor_origin(i);
     out.npoints = static_cast<int32_t>(cloud.size());
     out.x = cloud.x;
     out.y = cloud.y;

@@ -11,6 +11,7 @@
 #include <ugv/terrain_map_t.hpp>
 
 #include "ugv/bus/typed.hpp"
+#include "ugv/geometry/rotation.hpp"
 
 namespace ugv::eval {
 namespace {
@@ -23,7 +24,7 @@ public:
     explicit PlacedMap(const terrain_map_t& m) : m_(m)
     {
         const double* q = m.pose.orientation;  // w, x, y, z
-        const double yaw = std::atan2(2.0 * (q[0] * q[3] + q[1] * q[2]), 1.0 - 2.0 * (q[2] * q[2] + q[3] * q[3]));
+        const double yaw = geometry::yaw_from_quaternion(Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
         cos_ = std::cos(yaw - m.residual_yaw);
         sin_ = std::sin(yaw - m.residual_yaw);
     }

@@ -1,6 +1,9 @@
 #include "ugv/geometry/pose.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "ugv/geometry/rotation.hpp"
 
 namespace ugv::geometry {
 
@@ -20,19 +23,31 @@ RigidTransform RigidTransform::operator*(const RigidTransform& other) const
     return out;
 }
 
-StampedPose interpolate(const StampedPose& a, const StampedPose& b, int64_t utime)
+bool StampedPose::finite() const
 {
-    if (b.utime == a.utime) {
-        return a;
-    }
-    const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-    StampedPose out;
-    out.utime = utime;
-    out.body_to_world.translation =
-        a.body_to_world.translation + s * (b.body_to_world.translation - a.body_to_world.translation);
-    out.body_to_world.rotation =
-        a.body_to_world.rotation.slerp(std::clamp(s, 0.0, 1.0), b.body_to_world.rotation).normalized();
-    return out;
+    return position_m.allFinite() && orientation.coeffs().allFinite() && orientation.norm() > 0.5 &&
+           orientation_covariance_rad2.allFinite();
+}
+
+double StampedPose::yaw_rad() const
+{
+    return yaw_from_quaternion(orientation);
+}
+
+double StampedPose::orientation_error_rad2() const
+{
+    return std::max(0.0, orientation_covariance_rad2.diagonal().maxCoeff());
+}
+
+StampedPose interpolate(const StampedPose& a, const StampedPose& b, double fraction)
+{
+    StampedPose p;
+    p.utime_us = a.utime_us + static_cast<int64_t>(std::llround(fraction * static_cast<double>(b.utime_us - a.utime_us)));
+    p.position_m = a.position_m + fraction * (b.position_m - a.position_m);
+    p.orientation = a.orientation.slerp(fraction, b.orientation);
+    p.orientation_covariance_rad2 =
+        a.orientation_covariance_rad2 + fraction * (b.orientation_covariance_rad2 - a.orientation_covariance_rad2);
+    return p;
 }
 
 }  // namespace ugv::geometry

@@ -14,6 +14,26 @@ double wrap_angle(double rad)
     return a;
 }
 
+Eigen::Matrix2d rotation_2d(double angle)
+{
+    const double c = std::cos(angle), s = std::sin(angle);
+    Eigen::Matrix2d r;
+    r << c, -s, s, c;
+    return r;
+}
+
+Eigen::Matrix3d rotation_y(double angle)
+{
+    const double c = std::cos(angle), s = std::sin(angle);
+    Eigen::Matrix3d r;
+    r << c, 0.0, s,  //
+        0.0, 1.0, 0.0,  //
+        -s, 0.0, c;
+    return r;
+}
+
+// Through Eigen's AngleAxis (not the closed form of rotation_y): the estimator's results
+// were produced with this arithmetic.
 Eigen::Matrix3d rotation_z(double yaw)
 {
     return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -29,7 +49,20 @@ Eigen::Quaterniond quaternion_from_euler(const Euler& e)
 
 Eigen::Matrix3d rotation_from_euler(const Euler& e)
 {
-    return quaternion_from_euler(e).toRotationMatrix();
+    const double cr = std::cos(e.roll), sr = std::sin(e.roll);
+    const double cp = std::cos(e.pitch), sp = std::sin(e.pitch);
+    const double cy = std::cos(e.yaw), sy = std::sin(e.yaw);
+    Eigen::Matrix3d r;
+    r << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,  //
+        sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,    //
+        -sp, cp * sr, cp * cr;
+    return r;
+}
+
+double yaw_from_quaternion(const Eigen::Quaterniond& q)
+{
+    const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitX();
+    return std::atan2(forward.y(), forward.x());
 }
 
 Euler euler_from_quaternion(const Eigen::Quaterniond& q)

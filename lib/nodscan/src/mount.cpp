@@ -2,55 +2,48 @@
 
 #include <cmath>
 
+#include "ugv/geometry/rotation.hpp"
+
 namespace ugv::nodscan {
 
-Mat3 rotation_rpy(double roll, double pitch, double yaw)
-{
-    const double cr = std::cos(roll), sr = std::sin(roll);
-    const double cp = std::cos(pitch), sp = std::sin(pitch);
-    const double cy = std::cos(yaw), sy = std::sin(yaw);
-    return Mat3{{{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
-                 {sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr},
-                 {-sp, cp * sr, cp * cr}}};
-}
+namespace {
 
-Vec3 multiply(const Mat3& m, const Vec3& v)
+// m * v summed left to right in each row. Eigen's product adds the three terms in another
+// order; the points (and the simulator's rays) are compared bit for bit across versions.
+Eigen::Vector3d times(const Eigen::Matrix3d& m, const Eigen::Vector3d& v)
 {
-    Vec3 r{};
-    for (std::size_t i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    Eigen::Vector3d r;
+    for (int i = 0; i < 3; ++i) r(i) = m(i, 0) * v(0) + m(i, 1) * v(1) + m(i, 2) * v(2);
     return r;
 }
 
-Mat3 multiply(const Mat3& a, const Mat3& b)
+}  // namespace
+
+Eigen::Matrix3d rotation_rpy(const Eigen::Vector3d& rpy)
 {
-    Mat3 r{};
-    for (std::size_t i = 0; i < 3; ++i)
-        for (std::size_t j = 0; j < 3; ++j) r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
-    return r;
+    return geometry::rotation_from_euler({rpy(0), rpy(1), rpy(2)});
 }
 
-Mat3 tilt_rotation(double tilt)
+Eigen::Matrix3d tilt_rotation(double tilt)
 {
-    const double c = std::cos(tilt), s = std::sin(tilt);
-    return Mat3{{{c, 0.0, s}, {0.0, 1.0, 0.0}, {-s, 0.0, c}}};
+    return geometry::rotation_y(tilt);
 }
 
-Vec3 beam_point_body(const MountGeometry& m, double tilt, double beam_angle, double range)
+Eigen::Vector3d beam_direction_tilt_frame(const Eigen::Matrix3d& r_laser, double beam_angle)
 {
-    const Vec3 p_laser{range * std::cos(beam_angle), range * std::sin(beam_angle), 0.0};
-    Vec3 p = multiply(rotation_rpy(m.laser_rpy_rad[0], m.laser_rpy_rad[1], m.laser_rpy_rad[2]), p_laser);
-    for (std::size_t i = 0; i < 3; ++i) p[i] += m.laser_xyz_m[i];
-    p = multiply(rotation_rpy(m.axis_rpy_rad[0], m.axis_rpy_rad[1], m.axis_rpy_rad[2]), multiply(tilt_rotation(tilt), p));
-    for (std::size_t i = 0; i < 3; ++i) p[i] += m.axis_xyz_m[i];
-    return p;
+    return times(r_laser, Eigen::Vector3d(std::cos(beam_angle), std::sin(beam_angle), 0.0));
 }
 
-Vec3 laser_origin_body(const MountGeometry& m, double tilt)
+Eigen::Vector3d beam_point_body(const MountGeometry& m, double tilt, double beam_angle, double range)
 {
-    Vec3 p = multiply(rotation_rpy(m.axis_rpy_rad[0], m.axis_rpy_rad[1], m.axis_rpy_rad[2]),
-                      multiply(tilt_rotation(tilt), m.laser_xyz_m));
-    for (std::size_t i = 0; i < 3; ++i) p[i] += m.axis_xyz_m[i];
-    return p;
+    const Eigen::Vector3d p_laser(range * std::cos(beam_angle), range * std::sin(beam_angle), 0.0);
+    const Eigen::Vector3d p = times(rotation_rpy(m.laser_rpy_rad), p_laser) + m.laser_xyz_m;
+    return times(rotation_rpy(m.axis_rpy_rad), times(tilt_rotation(tilt), p)) + m.axis_xyz_m;
+}
+
+Eigen::Vector3d laser_origin_body(const MountGeometry& m, double tilt)
+{
+    return times(rotation_rpy(m.axis_rpy_rad), times(tilt_rotation(tilt), m.laser_xyz_m)) + m.axis_xyz_m;
 }
 
 }  // namespace ugv::nodscan

@@ -16,7 +16,7 @@ void PointCloud::clear()
 
 ScanAssembler::ScanAssembler(AssemblerConfig config)
     : config_(config),
-      r_axis_(rotation_rpy(config.mount.axis_rpy_rad[0], config.mount.axis_rpy_rad[1], config.mount.axis_rpy_rad[2]))
+      r_axis_(rotation_rpy(config.mount.axis_rpy_rad))
 {
 }
 
@@ -29,17 +29,16 @@ int64_t ScanAssembler::last_beam_utime(const ScanView& s)
 void ScanAssembler::prepare_directions(const ScanView& s)
 {
     if (s.n == cached_n_ && s.angle_min == cached_min_ && s.angle_increment == cached_inc_) return;
-    const Mat3 r_laser = rotation_rpy(config_.mount.laser_rpy_rad[0], config_.mount.laser_rpy_rad[1],
-                                      config_.mount.laser_rpy_rad[2]);
+    const Eigen::Matrix3d r_laser = rotation_rpy(config_.mount.laser_rpy_rad);
     ux_.resize(s.n);
     uy_.resize(s.n);
     uz_.resize(s.n);
     for (std::size_t i = 0; i < s.n; ++i) {
         const double a = s.angle_min + s.angle_increment * static_cast<double>(i);
-        const Vec3 u = multiply(r_laser, Vec3{std::cos(a), std::sin(a), 0.0});
-        ux_[i] = u[0];
-        uy_[i] = u[1];
-        uz_[i] = u[2];
+        const Eigen::Vector3d u = beam_direction_tilt_frame(r_laser, a);
+        ux_[i] = u(0);
+        uy_[i] = u(1);
+        uz_[i] = u(2);
     }
     cached_n_ = s.n;
     cached_min_ = s.angle_min;
@@ -61,9 +60,9 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
     out.sensor_origin = laser_origin_body(config_.mount, origin_tilt.value_or(0.0));
 
     for (auto* v : {&out.x, &out.y, &out.z, &out.range, &out.variance, &out.time_offset}) v->reserve(s.n);
-    const Vec3& tl = config_.mount.laser_xyz_m;
-    const Vec3& ta = config_.mount.axis_xyz_m;
-    const Mat3& ra = r_axis_;
+    const Eigen::Vector3d& tl = config_.mount.laser_xyz_m;
+    const Eigen::Vector3d& ta = config_.mount.axis_xyz_m;
+    const Eigen::Matrix3d& ra = r_axis_;
     const double var_r = config_.range_sigma_m * config_.range_sigma_m;
     const double var_a = config_.angle_sigma_rad * config_.angle_sigma_rad;
     const double rmax = s.range_max > 0.0 ? s.range_max : INFINITY;
@@ -78,18 +77,18 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
             continue;
         }
         // In the tilt frame.
-        const double px = r * ux_[i] + tl[0];
-        const double py = r * uy_[i] + tl[1];
-        const double pz = r * uz_[i] + tl[2];
+        const double px = r * ux_[i] + tl(0);
+        const double py = r * uy_[i] + tl(1);
+        const double pz = r * uz_[i] + tl(2);
         // Tilt about +Y.
         const double c = std::cos(tilt_[i]);
         const double sn = std::sin(tilt_[i]);
         const double qx = c * px + sn * pz;
         const double qz = -sn * px + c * pz;
         // Onto the vehicle.
-        out.x.push_back(static_cast<float>(ra[0][0] * qx + ra[0][1] * py + ra[0][2] * qz + ta[0]));
-        out.y.push_back(static_cast<float>(ra[1][0] * qx + ra[1][1] * py + ra[1][2] * qz + ta[1]));
-        out.z.push_back(static_cast<float>(ra[2][0] * qx + ra[2][1] * py + ra[2][2] * qz + ta[2]));
+        out.x.push_back(static_cast<float>(ra(0, 0) * qx + ra(0, 1) * py + ra(0, 2) * qz + ta(0)));
+        out.y.push_back(static_cast<float>(ra(1, 0) * qx + ra(1, 1) * py + ra(1, 2) * qz + ta(1)));
+        out.z.push_back(static_cast<float>(ra(2, 0) * qx + ra(2, 1) * py + ra(2, 2) * qz + ta(2)));
         out.range.push_back(static_cast<float>(r));
         out.variance.push_back(static_cast<float>(var_r + r * r * var_a));
         out.time_offset.push_back(static_cast<float>(s.time_increment * static_cast<double>(i)));

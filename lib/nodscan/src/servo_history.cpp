@@ -7,12 +7,10 @@ namespace ugv::nodscan {
 
 bool ServoHistory::add(const TiltSample& s)
 {
-    if (!std::isfinite(s.angle_rad) || (!samples_.empty() && s.utime <= samples_.back().utime)) {
+    if (!std::isfinite(s.angle_rad) || !samples_.add(s)) {
         ++rejected_;
         return false;
     }
-    samples_.push_back(s);
-    while (samples_.size() > 2 && samples_.front().utime < s.utime - keep_us_) samples_.pop_front();
     return true;
 }
 
@@ -32,16 +30,14 @@ std::size_t ServoHistory::angles_at(int64_t t0, double dt, std::size_t n, int64_
         std::fill(valid, valid + n, uint8_t{0});
         return 0;
     }
-    const int64_t newest = samples_.back().utime;
-    const int64_t oldest = samples_.front().utime;
+    const int64_t newest = samples_.newest().utime_us;
+    const int64_t oldest = samples_.oldest().utime_us;
     // First sample at or after t0 (the upper bracket of beam 0).
-    auto it = std::lower_bound(samples_.begin(), samples_.end(), t0,
-                               [](const TiltSample& s, int64_t t) { return s.utime < t; });
-    std::size_t hi = static_cast<std::size_t>(it - samples_.begin());
+    std::size_t hi = samples_.first_not_before(t0);
     std::size_t count = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const double t = static_cast<double>(t0) + dt * static_cast<double>(i);
-        while (hi < samples_.size() && static_cast<double>(samples_[hi].utime) < t) ++hi;
+        while (hi < samples_.size() && static_cast<double>(samples_[hi].utime_us) < t) ++hi;
         if (t < static_cast<double>(oldest) || t > static_cast<double>(newest + max_extra)) {
             valid[i] = 0;
             continue;
@@ -53,7 +49,7 @@ std::size_t ServoHistory::angles_at(int64_t t0, double dt, std::size_t n, int64_
             const std::size_t h = std::clamp<std::size_t>(hi, 1, samples_.size() - 1);
             const TiltSample& a = samples_[h - 1];
             const TiltSample& b = samples_[h];
-            const double f = (t - static_cast<double>(a.utime)) / static_cast<double>(b.utime - a.utime);
+            const double f = (t - static_cast<double>(a.utime_us)) / static_cast<double>(b.utime_us - a.utime_us);
             out[i] = a.angle_rad + f * (b.angle_rad - a.angle_rad);
         }
         valid[i] = 1;

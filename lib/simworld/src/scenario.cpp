@@ -28,10 +28,10 @@ Eigen::Vector3d vec3(runtime::Config& c, const std::string& key, const Eigen::Ve
     return {v[0], v[1], v[2]};
 }
 
-nodscan::Vec3 mount_vec(runtime::Config& c, const std::string& key, const nodscan::Vec3& def, double bound,
-                        double scale)
+Eigen::Vector3d mount_vec(runtime::Config& c, const std::string& key, const Eigen::Vector3d& def, double bound,
+                          double scale)
 {
-    const std::vector<double> v = c.get_doubles(key, {def[0] / scale, def[1] / scale, def[2] / scale}, 3, -bound, bound);
+    const std::vector<double> v = c.get_doubles(key, {def(0) / scale, def(1) / scale, def(2) / scale}, 3, -bound, bound);
     return {v[0] * scale, v[1] * scale, v[2] * scale};
 }
 

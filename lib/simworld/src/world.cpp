@@ -49,9 +49,12 @@ double World::ground_at(double x_m, double y_m) const
 void World::place(const PlanarState& p, TruthState& s) const
 {
     // The four wheels on the terrain give the body's height, pitch and roll.
-    const double c = std::cos(p.yaw_rad), sn = std::sin(p.yaw_rad);
+    const Eigen::Matrix2d turn = geometry::rotation_2d(p.yaw_rad);
     const double wb = scenario_.vehicle.wheelbase_m, half = scenario_.vehicle.track_m / 2;
-    auto wheel = [&](double bx, double by) { return ground_at(p.x_m + c * bx - sn * by, p.y_m + sn * bx + c * by); };
+    auto wheel = [&](double bx, double by) {
+        const Eigen::Vector2d w = turn * Eigen::Vector2d(bx, by);
+        return ground_at(p.x_m + w.x(), p.y_m + w.y());
+    };
     const double rl = wheel(0, half), rr = wheel(0, -half), fl = wheel(wb, half), fr = wheel(wb, -half);
     const double rear = 0.5 * (rl + rr), front = 0.5 * (fl + fr);
     const double left = 0.5 * (rl + fl), right = 0.5 * (rr + fr);
@@ -87,10 +90,9 @@ TruthState World::truth(int64_t utime) const
 
 double World::beam_range_m(const TruthState& s, double tilt_rad, double beam_angle_rad, double max_range_m) const
 {
-    const nodscan::Vec3 o = nodscan::laser_origin_body(scenario_.laser.mount, tilt_rad);
-    const nodscan::Vec3 e = nodscan::beam_point_body(scenario_.laser.mount, tilt_rad, beam_angle_rad, 1.0);
-    const Eigen::Vector3d origin_body(o[0], o[1], o[2]);
-    const Eigen::Vector3d dir_body = Eigen::Vector3d(e[0], e[1], e[2]) - origin_body;
+    const Eigen::Vector3d origin_body = nodscan::laser_origin_body(scenario_.laser.mount, tilt_rad);
+    const Eigen::Vector3d dir_body =
+        nodscan::beam_point_body(scenario_.laser.mount, tilt_rad, beam_angle_rad, 1.0) - origin_body;
     const Eigen::Vector3d origin = s.position_m + s.orientation * origin_body;
     const Eigen::Vector3d dir = (s.orientation * dir_body).normalized();
     return ray_cast(field_, origin, dir, max_range_m);

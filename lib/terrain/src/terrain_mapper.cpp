@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "fusion_kernels.hpp"
+#include "ugv/geometry/rotation.hpp"
 #include "ugv/terrain/point_variance.hpp"
 #include "ugv/terrain/spread.hpp"
 
@@ -14,13 +15,8 @@ namespace ugv::terrain {
 
 namespace {
 
-Eigen::Matrix2d rot2(double yaw)
-{
-    const double c = std::cos(yaw), s = std::sin(yaw);
-    Eigen::Matrix2d r;
-    r << c, -s, s, c;
-    return r;
-}
+using geometry::wrap_angle;
+using geometry::rotation_2d;
 
 // Body -> local map frame for one pose: rows 0-1 the local x, y; row 2 the ENU height.
 struct Affine
@@ -32,7 +28,7 @@ struct Affine
 Affine body_to_local(const Pose& pose, const Eigen::Vector2d& origin_m, double yaw_rad)
 {
     Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
-    turn.topLeftCorner<2, 2>() = rot2(-yaw_rad);
+    turn.topLeftCorner<2, 2>() = rotation_2d(-yaw_rad);
     const Eigen::Matrix3d r = turn * pose.orientation.toRotationMatrix();
     Eigen::Vector3d t = pose.position_m;
     t.x() -= origin_m.x();
@@ -111,7 +107,7 @@ void TerrainMapper::clear()
 
 Eigen::Vector2d TerrainMapper::reference_world(const Pose& pose) const
 {
-    return pose.position_m.head<2>() + rot2(pose.yaw_rad()) * Eigen::Vector2d(config_.reference_x_m, config_.reference_y_m);
+    return pose.position_m.head<2>() + rotation_2d(pose.yaw_rad()) * Eigen::Vector2d(config_.reference_x_m, config_.reference_y_m);
 }
 
 TerrainMapper::Frame TerrainMapper::local_frame() const
@@ -149,7 +145,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
         anchor_yaw_rad_ = yaw;
         return;
     }
-    Eigen::Vector2d local = rot2(-anchor_yaw_rad_) * (ref - anchor_m_);
+    Eigen::Vector2d local = rotation_2d(-anchor_yaw_rad_) * (ref - anchor_m_);
     if (local.norm() > std::max(config_.extent_x_m, config_.extent_y_m)) {
         // A jump larger than the map (GPS reacquired, datum change): nothing in it still holds.
         ego_->clear();
@@ -161,13 +157,13 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     const double g = config_.grid_size_m;
     // Rotation (section 3.3.2): once the summed yaw passes theta_d, turn the map by the whole
     // multiples of theta_d it holds, about the reference point, which becomes the new origin.
-    const double d_yaw = wrap_angle_rad(yaw - anchor_yaw_rad_);
+    const double d_yaw = wrap_angle(yaw - anchor_yaw_rad_);
     if (std::abs(d_yaw) >= config_.theta_d_rad) {
         const double steps = std::trunc(d_yaw / config_.theta_d_rad);
         const double angle = steps * config_.theta_d_rad;
         counters_.cells_dropped += static_cast<uint64_t>(ego_->transform(angle, local.x(), local.y()));
         anchor_m_ = ref;
-        anchor_yaw_rad_ = wrap_angle_rad(anchor_yaw_rad_ + angle);
+        anchor_yaw_rad_ = wrap_angle(anchor_yaw_rad_ + angle);
         ++counters_.rotations;
         local.setZero();
     }
@@ -446,20 +442,20 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     out.pose = pose;
     const double yaw = pose.yaw_rad();
     if (ego_) {
-        const Eigen::Vector2d body = rot2(-anchor_yaw_rad_) * (pose.position_m.head<2>() - anchor_m_);
-        const Eigen::Vector2d ref = rot2(-anchor_yaw_rad_) * (reference_world(pose) - anchor_m_);
+        const Eigen::Vector2d body = rotation_2d(-anchor_yaw_rad_) * (pose.position_m.head<2>() - anchor_m_);
+        const Eigen::Vector2d ref = rotation_2d(-anchor_yaw_rad_) * (reference_world(pose) - anchor_m_);
         out.origin_x_m = -body.x();
         out.origin_y_m = y_min - body.y();
         out.wrap_index = ego_->wrap_index();
         out.x_curr_m = ref.x();
-        out.residual_yaw_rad = wrap_angle_rad(yaw - anchor_yaw_rad_);
+        out.residual_yaw_rad = wrap_angle(yaw - anchor_yaw_rad_);
         for (int i = 0; i < nx; ++i)
             for (int j = 0; j < ny; ++j) put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->count(i, j));
         return;
     }
     // World-aligned: resample into the vehicle's heading at the reference point (nearest cell).
     const Eigen::Vector2d ref = reference_world(pose);
-    const Eigen::Matrix2d turn = rot2(yaw);
+    const Eigen::Matrix2d turn = rotation_2d(yaw);
     out.origin_x_m = config_.reference_x_m;
     out.origin_y_m = config_.reference_y_m + y_min;
     out.wrap_index = 0;
@@ -479,9 +475,9 @@ CellStatistics TerrainMapper::statistics_at_body(double x_m, double y_m) const
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     if (history_.empty()) return {nan, nan};
     const Pose& pose = history_.newest();
-    const Eigen::Vector2d world = pose.position_m.head<2>() + rot2(pose.yaw_rad()) * Eigen::Vector2d(x_m, y_m);
+    const Eigen::Vector2d world = pose.position_m.head<2>() + rotation_2d(pose.yaw_rad()) * Eigen::Vector2d(x_m, y_m);
     if (ego_) {
-        const Eigen::Vector2d local = rot2(-anchor_yaw_rad_) * (world - anchor_m_);
+        const Eigen::Vector2d local = rotation_2d(-anchor_yaw_rad_) * (world - anchor_m_);
         float xr = 0, yr = 0;
         const int cell = ego_->locate(static_cast<float>(local.x()), static_cast<float>(local.y()), xr, yr);
         if (cell < 0) return {nan, nan};

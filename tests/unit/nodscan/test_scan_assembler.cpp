@@ -131,7 +131,7 @@ TEST_CASE("The fast path equals the reference transform for an arbitrary mount")
     a.assemble(view(ranges, 0, -0.4, 0.4, 0.0), servo, pc);
     REQUIRE(pc.size() == 3);
     for (std::size_t i = 0; i < 3; ++i) {
-        const Vec3 p = beam_point_body(cfg.mount, 0.35, -0.4 + 0.4 * static_cast<double>(i), ranges[i]);
+        const Eigen::Vector3d p = beam_point_body(cfg.mount, 0.35, -0.4 + 0.4 * static_cast<double>(i), ranges[i]);
         CHECK(pc.x[i] == Approx(p[0]).margin(1e-5));
         CHECK(pc.y[i] == Approx(p[1]).margin(1e-5));
         CHECK(pc.z[i] == Approx(p[2]).margin(1e-5));

@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-std::string triple(const nodscan::Vec3& v, double scale)
+std::string triple(const Eigen::Vector3d& v, double scale)
 {
     std::ostringstream s;
     s.precision(10);

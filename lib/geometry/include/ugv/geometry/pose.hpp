@@ -1,5 +1,5 @@
-// Rigid transforms and time-stamped poses (body -> world), with interpolation between two
-// poses at an intermediate time: linear in position, spherical-linear in orientation.
+// Rigid transforms, and the time-stamped vehicle pose with its orientation covariance and
+// its interpolation between two poses.
 #pragma once
 
 #include <cstdint>
@@ -21,15 +21,26 @@ struct RigidTransform
     RigidTransform operator*(const RigidTransform& other) const;
 };
 
-// The body -> world transform at utime (us since the epoch).
+// The body pose in the local ENU frame at one time, with the roll/pitch/yaw covariance.
 struct StampedPose
 {
-    int64_t utime = 0;
-    RigidTransform body_to_world;
+    int64_t utime_us = 0;                        // time the pose is valid at, us since the epoch
+    Eigen::Vector3d position_m{0, 0, 0};         // body origin (the pose's reference point) in ENU
+    Eigen::Quaterniond orientation{1, 0, 0, 0};  // body -> ENU
+    Eigen::Matrix3d orientation_covariance_rad2 = Eigen::Matrix3d::Zero();  // roll, pitch, yaw
+
+    // Every number finite and the orientation not degenerate (norm > 0.5).
+    bool finite() const;
+    // Heading of the body X axis projected on the ground (rad, 0 = east, CCW positive).
+    double yaw_rad() const;
+    // The largest of the roll, pitch and yaw variances (rad^2, >= 0): a bound on the
+    // orientation error about any axis (the terrain map's de^2 of eq. 19).
+    double orientation_error_rad2() const;
 };
 
-// The pose at utime between a and b (a.utime <= utime <= b.utime; outside that range it
-// extrapolates linearly in position and clamps the orientation). a.utime == b.utime gives a.
-StampedPose interpolate(const StampedPose& a, const StampedPose& b, int64_t utime);
+// The pose a fraction of the way from a (0) to b (1): position and covariance linear,
+// orientation slerp (the shorter way round, so yaw crosses +-pi without a full turn). The
+// time is rounded to the microsecond. Fractions outside [0, 1] extrapolate.
+StampedPose interpolate(const StampedPose& a, const StampedPose& b, double fraction);
 
 }  // namespace ugv::geometry

@@ -18,15 +18,26 @@ struct Euler
     double yaw = 0.0;    // rad, about ENU up, 0 = east, counter-clockwise positive
 };
 
-// Wraps an angle into (-pi, pi].
+// Wraps an angle into (-pi, pi]: -pi itself becomes +pi.
 double wrap_angle(double rad);
 
 // Body -> ENU rotation from Z-Y-X Euler angles.
 Eigen::Quaterniond quaternion_from_euler(const Euler& e);
 // Z-Y-X Euler angles of a body -> ENU rotation (pitch in [-pi/2, pi/2]).
 Euler euler_from_quaternion(const Eigen::Quaterniond& q);
+// The same rotation as a matrix, multiplied out from the angles' sines and cosines (no
+// quaternion on the way, so a zero angle contributes exact zeros and ones).
 Eigen::Matrix3d rotation_from_euler(const Euler& e);
 
+// Heading of the body X axis projected on the ground (rad, 0 = east, counter-clockwise
+// positive, in [-pi, pi]): the Z-Y-X yaw. q is taken as a unit quaternion, not normalised.
+double yaw_from_quaternion(const Eigen::Quaterniond& q);
+
+// A plane rotation by angle (rad, counter-clockwise): [c -s; s c].
+Eigen::Matrix2d rotation_2d(double angle);
+
+// A rotation about +Y by angle (rad): turns +X towards -Z for a positive angle.
+Eigen::Matrix3d rotation_y(double angle);
 // A rotation about ENU up by yaw (rad).
 Eigen::Matrix3d rotation_z(double yaw);
 

@@ -9,33 +9,30 @@
 // plane z = 0; it is placed in the tilt frame by t_laser and rpy_laser.
 #pragma once
 
-#include <array>
+#include <Eigen/Core>
 
 namespace ugv::nodscan {
 
-using Vec3 = std::array<double, 3>;
-using Mat3 = std::array<std::array<double, 3>, 3>;  // row-major
-
-// Rotation from roll, pitch, yaw (rad) applied as Rz(yaw) * Ry(pitch) * Rx(roll).
-Mat3 rotation_rpy(double roll, double pitch, double yaw);
-Vec3 multiply(const Mat3& m, const Vec3& v);
-Mat3 multiply(const Mat3& a, const Mat3& b);
-
 struct MountGeometry
 {
-    Vec3 axis_xyz_m{0.0, 0.0, 0.0};  // tilt axis origin in the body frame
-    Vec3 axis_rpy_rad{0.0, 0.0, 0.0};
-    Vec3 laser_xyz_m{0.0, 0.0, 0.0};  // laser origin in the tilt frame (offset from the axis)
-    Vec3 laser_rpy_rad{0.0, 0.0, 0.0};
+    Eigen::Vector3d axis_xyz_m{0.0, 0.0, 0.0};  // tilt axis origin in the body frame
+    Eigen::Vector3d axis_rpy_rad{0.0, 0.0, 0.0};
+    Eigen::Vector3d laser_xyz_m{0.0, 0.0, 0.0};  // laser origin in the tilt frame (offset from the axis)
+    Eigen::Vector3d laser_rpy_rad{0.0, 0.0, 0.0};
 };
 
+// R_axis and R_laser: roll, pitch, yaw (rad) applied as Rz(yaw) * Ry(pitch) * Rx(roll).
+Eigen::Matrix3d rotation_rpy(const Eigen::Vector3d& rpy_rad);
+
 // Rotation about +Y by tilt (positive = nose down).
-Mat3 tilt_rotation(double tilt_rad);
+Eigen::Matrix3d tilt_rotation(double tilt_rad);
 
 // The body-frame position of a point at range r along a beam at beam_angle_rad, with the
 // laser tilted by tilt_rad (reference implementation; the assembler computes the same faster).
-Vec3 beam_point_body(const MountGeometry& mount, double tilt_rad, double beam_angle_rad, double range_m);
+Eigen::Vector3d beam_point_body(const MountGeometry& mount, double tilt_rad, double beam_angle_rad, double range_m);
 // The laser origin in the body frame at this tilt.
-Vec3 laser_origin_body(const MountGeometry& mount, double tilt_rad);
+Eigen::Vector3d laser_origin_body(const MountGeometry& mount, double tilt_rad);
+// The unit direction of a beam in the tilt frame (R_laser times the beam in the scan plane).
+Eigen::Vector3d beam_direction_tilt_frame(const Eigen::Matrix3d& r_laser, double beam_angle_rad);
 
 }  // namespace ugv::nodscan

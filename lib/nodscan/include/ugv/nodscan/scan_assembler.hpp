@@ -37,7 +37,7 @@ struct ScanView
 struct PointCloud
 {
     int64_t utime = 0;
-    Vec3 sensor_origin{};  // laser origin in the body frame at utime
+    Eigen::Vector3d sensor_origin{0.0, 0.0, 0.0};  // laser origin in the body frame at utime
     std::vector<float> x, y, z, range, variance, time_offset;
     void clear();
     std::size_t size() const { return x.size(); }
@@ -68,7 +68,7 @@ private:
     void prepare_directions(const ScanView& scan);
 
     AssemblerConfig config_;
-    Mat3 r_axis_{};
+    Eigen::Matrix3d r_axis_;
     // Cached per scan layout: unit beam directions in the tilt frame.
     double cached_min_ = 0.0, cached_inc_ = 0.0;
     std::size_t cached_n_ = 0;

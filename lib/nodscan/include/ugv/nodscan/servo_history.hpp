@@ -1,17 +1,20 @@
 // The recent tilt angles of the servo, in time order, with linear interpolation at any time
-// inside (and a short extrapolation beyond) the samples.
+// inside (and a short extrapolation beyond) the samples. The storage is lib/geometry's
+// TimeHistory, as for the poses; the lookup is the servo's own: fractional times, a batch of
+// equally spaced beams in one pass, and the bounded extrapolation a pose never gets.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <optional>
+
+#include "ugv/geometry/history.hpp"
 
 namespace ugv::nodscan {
 
 struct TiltSample
 {
-    int64_t utime = 0;   // us since the epoch
+    int64_t utime_us = 0;  // us since the epoch
     double angle_rad = 0.0;
 };
 
@@ -19,7 +22,7 @@ class ServoHistory
 {
 public:
     // keep_us: samples older than the newest minus keep_us are forgotten (2 s default).
-    explicit ServoHistory(int64_t keep_us = 2'000'000) : keep_us_(keep_us) {}
+    explicit ServoHistory(int64_t keep_us = 2'000'000) : samples_(keep_us) {}
 
     // False (and counted) when the sample is not newer than the last one or not finite.
     bool add(const TiltSample& sample);
@@ -35,14 +38,13 @@ public:
                           uint8_t* valid) const;
 
     bool empty() const { return samples_.empty(); }
-    int64_t newest_utime() const { return samples_.empty() ? INT64_MIN : samples_.back().utime; }
-    int64_t oldest_utime() const { return samples_.empty() ? INT64_MIN : samples_.front().utime; }
+    int64_t newest_utime() const { return samples_.empty() ? INT64_MIN : samples_.newest().utime_us; }
+    int64_t oldest_utime() const { return samples_.empty() ? INT64_MIN : samples_.oldest().utime_us; }
     std::size_t size() const { return samples_.size(); }
     uint64_t rejected() const { return rejected_; }
 
 private:
-    int64_t keep_us_;
-    std::deque<TiltSample> samples_;
+    geometry::TimeHistory<TiltSample> samples_;
     uint64_t rejected_ = 0;
 };
 
