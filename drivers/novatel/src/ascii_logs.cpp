@@ -1,24 +1,16 @@
 // NovAtel ASCII logs: "#NAMEA,port,seq,idle,timestatus,week,seconds,rxstatus,reserved,sw;body"
-// and short "%NAMEA,week,seconds;body". Enums are printed as names.
+// and short "%NAMEA,week,seconds;body". Enums are printed as names. The header is read
+// here; the body by the layout the log table names for the log.
 #include <cmath>
 
-#include "ugv/novatel/enums.hpp"
+#include "body_layout.hpp"
 #include "ugv/novatel/checksum.hpp"
+#include "ugv/novatel/enums.hpp"
 #include "ugv/novatel/log_decoding.hpp"
 #include "ugv/novatel/text_fields.hpp"
 
 namespace ugv::novatel {
 namespace {
-
-uint16_t id_of(std::string_view base)
-{
-    if (base == "BESTPOS") return log_id::bestpos;
-    if (base == "PSRPOS") return log_id::psrpos;
-    if (base == "BESTVEL") return log_id::bestvel;
-    if (base == "PSRVEL") return log_id::psrvel;
-    if (base == "TIME") return log_id::time;
-    return 0;
-}
 
 bool parse_seconds_ms(std::string_view field, uint32_t& ms)
 {
@@ -69,96 +61,6 @@ bool parse_header(std::string_view text, FrameKind kind, LogHeader& h)
     return true;
 }
 
-// Fills d from a field when it holds a number; an empty field leaves the NaN default.
-bool number(FieldReader& r, double& d)
-{
-    std::string_view f;
-    if (!r.next(f)) {
-        return false;
-    }
-    parse_double(f, d);
-    return true;
-}
-
-bool count(FieldReader& r, int& n)
-{
-    std::string_view f;
-    if (!r.next(f)) {
-        return false;
-    }
-    int64_t v = 0;
-    if (parse_int(f, v)) {
-        n = static_cast<int>(v);
-    }
-    return true;
-}
-
-bool position_body(std::string_view body, Position& p)
-{
-    FieldReader r(body);
-    std::string_view sol, type, datum, station;
-    if (!r.next(sol) || !r.next(type)) {
-        return false;
-    }
-    p.solution_status = solution_status_from_name(sol);
-    p.position_type = position_type_from_name(type);
-    if (!number(r, p.latitude_deg) || !number(r, p.longitude_deg) || !number(r, p.height_msl_m) ||
-        !number(r, p.undulation_m) || !r.next(datum) || !number(r, p.sigma_latitude_m) ||
-        !number(r, p.sigma_longitude_m) || !number(r, p.sigma_height_m) || !r.next(station) ||
-        !number(r, p.differential_age_s) || !number(r, p.solution_age_s) || !count(r, p.satellites_tracked) ||
-        !count(r, p.satellites_used)) {
-        return false;
-    }
-    p.datum_id = datum == "WGS84" ? 61U : kUnknownEnum;
-    p.station_id = std::string(station);
-    return true;
-}
-
-bool velocity_body(std::string_view body, Velocity& v)
-{
-    FieldReader r(body);
-    std::string_view sol, type;
-    if (!r.next(sol) || !r.next(type)) {
-        return false;
-    }
-    v.solution_status = solution_status_from_name(sol);
-    v.velocity_type = position_type_from_name(type);
-    return number(r, v.latency_s) && number(r, v.age_s) && number(r, v.horizontal_speed_mps) &&
-           number(r, v.track_deg) && number(r, v.vertical_speed_mps);
-}
-
-uint32_t clock_status_from_name(std::string_view n)
-{
-    if (n == "VALID") return 0;
-    if (n == "CONVERGING") return 1;
-    if (n == "ITERATING") return 2;
-    if (n == "INVALID") return 3;
-    return kUnknownEnum;
-}
-
-uint32_t utc_status_from_name(std::string_view n)
-{
-    if (n == "INVALID") return 0;
-    if (n == "VALID") return 1;
-    if (n == "WARNING") return 2;
-    return kUnknownEnum;
-}
-
-bool time_body(std::string_view body, TimeLog& t)
-{
-    FieldReader r(body);
-    std::string_view clock, year, month, day, hour, minute, ms, utc;
-    if (!r.next(clock) || !number(r, t.receiver_clock_offset_s) || !number(r, t.receiver_clock_offset_std_s) ||
-        !number(r, t.utc_offset_s) || !r.next(year) || !r.next(month) || !r.next(day) || !r.next(hour) ||
-        !r.next(minute) || !r.next(ms) || !r.next(utc)) {
-        return false;
-    }
-    t.clock_status = clock_status_from_name(clock);
-    t.utc_status = utc_status_from_name(utc);
-    return parse_uint(year, t.utc_year) && parse_uint(month, t.utc_month) && parse_uint(day, t.utc_day) &&
-           parse_uint(hour, t.utc_hour) && parse_uint(minute, t.utc_minute) && parse_uint(ms, t.utc_ms);
-}
-
 }  // namespace
 
 DecodeStatus decode_ascii(const uint8_t* frame, std::size_t size, FrameKind kind, Message& out,
@@ -174,48 +76,21 @@ DecodeStatus decode_ascii(const uint8_t* frame, std::size_t size, FrameKind kind
     if (semicolon == std::string_view::npos || name.empty() || name.size() > semicolon) {
         return DecodeStatus::malformed;
     }
-    // The last letter is the format (A = ASCII); the id is the name without it.
-    const uint16_t id = id_of(name.substr(0, name.size() - 1));
-    if (name.back() != 'A' || id == 0) {
+    // The last letter is the format (A = ASCII); the table knows the name without it.
+    const LogInfo* log = find_log(name.substr(0, name.size() - 1));
+    if (name.back() != 'A' || log == nullptr) {
         return DecodeStatus::unknown;
     }
     LogHeader h;
     if (!parse_header(text.substr(0, semicolon), kind, h)) {
         return DecodeStatus::malformed;
     }
-    h.id = id;
-    const std::string_view body = text.substr(semicolon + 1);
-    switch (id) {
-    case log_id::bestpos:
-    case log_id::psrpos: {
-        Position p;
-        p.header = h;
-        if (!position_body(body, p)) {
-            return DecodeStatus::malformed;
-        }
-        out = std::move(p);
-        return DecodeStatus::decoded;
+    h.id = log->id;
+    const BodyLayout& layout = *log->layout;
+    if (!layout.from_ascii(h, text.substr(semicolon + 1), out) || !layout.plausible(out)) {
+        return DecodeStatus::malformed;
     }
-    case log_id::bestvel:
-    case log_id::psrvel: {
-        Velocity v;
-        v.header = h;
-        if (!velocity_body(body, v)) {
-            return DecodeStatus::malformed;
-        }
-        out = v;
-        return DecodeStatus::decoded;
-    }
-    default: {
-        TimeLog t;
-        t.header = h;
-        if (!time_body(body, t)) {
-            return DecodeStatus::malformed;
-        }
-        out = t;
-        return DecodeStatus::decoded;
-    }
-    }
+    return DecodeStatus::decoded;
 }
 
 }  // namespace ugv::novatel

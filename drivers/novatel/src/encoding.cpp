@@ -2,33 +2,16 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 
+#include "body_fields.hpp"
+#include "body_layout.hpp"
 #include "ugv/novatel/checksum.hpp"
 #include "ugv/novatel/enums.hpp"
 #include "ugv/novatel/text_fields.hpp"
 
 namespace ugv::novatel {
 namespace {
-
-template <typename T>
-void put(std::vector<uint8_t>& out, std::size_t offset, T v)
-{
-    std::memcpy(out.data() + offset, &v, sizeof v);  // little-endian host, like the receiver
-}
-
-std::string format(const char* fmt, auto... args)
-{
-    char buf[512];
-    const int n = std::snprintf(buf, sizeof buf, fmt, args...);
-    return std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0U);
-}
-
-std::string enum_name(std::optional<std::string_view> name, uint32_t value)
-{
-    return name ? std::string(*name) : std::to_string(value);
-}
 
 // NMEA angle: ddmm.mmmmmmm with the hemisphere letter.
 std::string nmea_angle(double deg, bool latitude)
@@ -95,39 +78,11 @@ std::vector<uint8_t> encode_binary(const LogHeader& h, const std::vector<uint8_t
     return f;
 }
 
-std::vector<uint8_t> encode_position_body(const Position& p)
-{
-    std::vector<uint8_t> b(72, 0);
-    put<uint32_t>(b, 0, p.solution_status);
-    put<uint32_t>(b, 4, p.position_type);
-    put<double>(b, 8, p.latitude_deg);
-    put<double>(b, 16, p.longitude_deg);
-    put<double>(b, 24, p.height_msl_m);
-    put<float>(b, 32, static_cast<float>(p.undulation_m));
-    put<uint32_t>(b, 36, p.datum_id);
-    put<float>(b, 40, static_cast<float>(p.sigma_latitude_m));
-    put<float>(b, 44, static_cast<float>(p.sigma_longitude_m));
-    put<float>(b, 48, static_cast<float>(p.sigma_height_m));
-    std::memcpy(b.data() + 52, p.station_id.data(), std::min<std::size_t>(4, p.station_id.size()));
-    put<float>(b, 56, static_cast<float>(p.differential_age_s));
-    put<float>(b, 60, static_cast<float>(p.solution_age_s));
-    b[64] = static_cast<uint8_t>(std::max(0, p.satellites_tracked));
-    b[65] = static_cast<uint8_t>(std::max(0, p.satellites_used));
-    return b;
-}
+std::vector<uint8_t> encode_body(const LogInfo& log, const Message& m) { return log.layout->to_binary(m); }
 
-std::vector<uint8_t> encode_velocity_body(const Velocity& v)
-{
-    std::vector<uint8_t> b(44, 0);
-    put<uint32_t>(b, 0, v.solution_status);
-    put<uint32_t>(b, 4, v.velocity_type);
-    put<float>(b, 8, static_cast<float>(v.latency_s));
-    put<float>(b, 12, static_cast<float>(v.age_s));
-    put<double>(b, 16, v.horizontal_speed_mps);
-    put<double>(b, 24, v.track_deg);
-    put<double>(b, 32, v.vertical_speed_mps);
-    return b;
-}
+std::vector<uint8_t> encode_position_body(const Position& p) { return position_layout.to_binary(p); }
+
+std::vector<uint8_t> encode_velocity_body(const Velocity& v) { return velocity_layout.to_binary(v); }
 
 std::string encode_ascii(std::string_view name, const LogHeader& h, std::string_view fields)
 {
@@ -141,23 +96,11 @@ std::string encode_ascii(std::string_view name, const LogHeader& h, std::string_
     return "#" + text + format("*%08x\r\n", crc);
 }
 
-std::string position_fields(const Position& p)
-{
-    return enum_name(solution_status_name(p.solution_status), p.solution_status) + "," +
-           enum_name(position_type_name(p.position_type), p.position_type) +
-           format(",%.11f,%.11f,%.4f,%.4f,WGS84,%.4f,%.4f,%.4f,\"%s\",%.3f,%.3f,%d,%d,0,0,0,06,00,03",
-                  p.latitude_deg, p.longitude_deg, p.height_msl_m, p.undulation_m, p.sigma_latitude_m,
-                  p.sigma_longitude_m, p.sigma_height_m, p.station_id.c_str(), p.differential_age_s,
-                  p.solution_age_s, p.satellites_tracked, p.satellites_used);
-}
+std::string encode_fields(const LogInfo& log, const Message& m) { return log.layout->to_ascii(m); }
 
-std::string velocity_fields(const Velocity& v)
-{
-    return enum_name(solution_status_name(v.solution_status), v.solution_status) + "," +
-           enum_name(position_type_name(v.velocity_type), v.velocity_type) +
-           format(",%.3f,%.3f,%.6f,%.6f,%.6f,0", v.latency_s, v.age_s, v.horizontal_speed_mps, v.track_deg,
-                  v.vertical_speed_mps);
-}
+std::string position_fields(const Position& p) { return position_layout.to_ascii(p); }
+
+std::string velocity_fields(const Velocity& v) { return velocity_layout.to_ascii(v); }
 
 std::string encode_nmea(std::string_view body)
 {

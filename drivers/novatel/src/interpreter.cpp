@@ -1,5 +1,6 @@
 #include "ugv/novatel/interpreter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -12,9 +13,15 @@ constexpr double kBitsPerByte = 10.0;  // 8N1
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kSameEpochS = 0.0005;  // NMEA times of one epoch agree to the printed digit
 
-// Source ranks (lower is better).
-constexpr int kRankBestPos = 0, kRankPsrPos = 1, kRankGga = 2;
-constexpr int kRankBestVel = 0, kRankPsrVel = 1, kRankRmc = 2, kRankVtg = 3;
+// A log's rank among the sources of its quantity, from the log table. A message the table
+// lacks (built by hand) ranks with the worst log of the table.
+int rank_of(uint16_t id)
+{
+    if (const LogInfo* log = find_log(id)) return log->rank;
+    int worst = 0;
+    for (const auto& log : log_table()) worst = std::max(worst, log.rank);
+    return worst;
+}
 
 Source source_of(FrameKind kind)
 {
@@ -48,15 +55,16 @@ int64_t Interpreter::fallback_utime(int64_t arrival_utime, std::size_t frame_byt
     return t;
 }
 
-bool Interpreter::accept(int rank, int64_t arrival_utime, int64_t (&last_seen)[4])
+bool Interpreter::accept(int rank, int64_t arrival_utime, SourceTimes& last_seen)
 {
-    for (int better = 0; better < rank; ++better) {
+    const auto r = static_cast<std::size_t>(rank);
+    for (std::size_t better = 0; better < r; ++better) {
         if (last_seen[better] != 0 && arrival_utime - last_seen[better] < config_.source_hold_us) {
             ++superseded_;
             return false;
         }
     }
-    last_seen[rank] = arrival_utime;
+    last_seen[r] = arrival_utime;
     return true;
 }
 
@@ -66,14 +74,12 @@ Interpretation Interpreter::on_message(const Message& message, FrameKind kind, i
     Interpretation out;
     if (const auto* p = std::get_if<Position>(&message)) {
         last_time_status_ = p->header.time_status;
-        const int rank = p->header.id == log_id::bestpos ? kRankBestPos : kRankPsrPos;
-        if (accept(rank, arrival, position_seen_)) {
+        if (accept(rank_of(p->header.id), arrival, position_seen_)) {
             out.fix = fix_from_position(*p, kind, arrival, bytes);
         }
     } else if (const auto* v = std::get_if<Velocity>(&message)) {
         last_time_status_ = v->header.time_status;
-        const int rank = v->header.id == log_id::bestvel ? kRankBestVel : kRankPsrVel;
-        if (accept(rank, arrival, velocity_seen_)) {
+        if (accept(rank_of(v->header.id), arrival, velocity_seen_)) {
             out.velocity = velocity_from_log(*v, kind, arrival, bytes);
         }
     } else if (const auto* t = std::get_if<TimeLog>(&message)) {
@@ -83,10 +89,10 @@ Interpretation Interpreter::on_message(const Message& message, FrameKind kind, i
     } else if (const auto* gst = std::get_if<Gst>(&message)) {
         return on_gst(*gst);
     } else if (const auto* rmc = std::get_if<Rmc>(&message)) {
-        return on_nmea_velocity(rmc->utc_time_s, rmc->valid, rmc->speed_mps, rmc->track_deg, kRankRmc, arrival,
+        return on_nmea_velocity(rmc->utc_time_s, rmc->valid, rmc->speed_mps, rmc->track_deg, nmea_rank::rmc, arrival,
                                 bytes);
     } else if (const auto* vtg = std::get_if<Vtg>(&message)) {
-        return on_nmea_velocity(kNaN, false, vtg->speed_mps, vtg->track_deg, kRankVtg, arrival, bytes);
+        return on_nmea_velocity(kNaN, false, vtg->speed_mps, vtg->track_deg, nmea_rank::vtg, arrival, bytes);
     }
     return out;
 }
@@ -178,7 +184,7 @@ void Interpreter::attach_gst(Fix& fix, const Gst& gst) const
 Interpretation Interpreter::on_gga(const Gga& g, int64_t arrival, std::size_t bytes)
 {
     Interpretation out;
-    if (!accept(kRankGga, arrival, position_seen_)) {
+    if (!accept(nmea_rank::gga, arrival, position_seen_)) {
         return out;
     }
     Fix fix = fix_from_gga(g, arrival, bytes);

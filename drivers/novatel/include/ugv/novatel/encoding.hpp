@@ -9,17 +9,22 @@
 #include <string_view>
 #include <vector>
 
+#include "ugv/novatel/log_table.hpp"
 #include "ugv/novatel/messages.hpp"
 
 namespace ugv::novatel {
 
 // A long-header binary frame: header (28 bytes) + body + CRC-32.
 std::vector<uint8_t> encode_binary(const LogHeader& header, const std::vector<uint8_t>& body);
+// The binary body of any log in the table; empty when m is not the struct of its layout.
+std::vector<uint8_t> encode_body(const LogInfo& log, const Message& m);
 std::vector<uint8_t> encode_position_body(const Position& p);   // 72 bytes
 std::vector<uint8_t> encode_velocity_body(const Velocity& v);   // 44 bytes
 
 // "#NAME,port,seq,idle,timestatus,week,seconds,rxstatus,reserved,sw;fields*crc\r\n".
 std::string encode_ascii(std::string_view name, const LogHeader& header, std::string_view fields);
+// The ASCII fields of any log in the table; empty when m is not the struct of its layout.
+std::string encode_fields(const LogInfo& log, const Message& m);
 std::string position_fields(const Position& p);   // the BESTPOSA body
 std::string velocity_fields(const Velocity& v);   // the BESTVELA body
 

@@ -7,15 +7,18 @@
 // arrival time minus its transmission time and the configured output latency.
 //
 // Sources: a receiver may send the same epoch as BESTPOS, PSRPOS and GGA at once. The best
-// one seen recently wins (BESTPOS > PSRPOS > GGA; BESTVEL > PSRVEL > RMC > VTG); a lower
-// one is used only when no better one arrived within source_hold_us.
+// one seen recently wins (the ranks in log_table.hpp: BESTPOS > PSRPOS > GGA; BESTVEL >
+// PSRVEL > RMC > VTG); a lower one is used only when no better one arrived within
+// source_hold_us.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 
 #include "ugv/novatel/fix_quality.hpp"
 #include "ugv/novatel/gps_time.hpp"
+#include "ugv/novatel/log_table.hpp"
 #include "ugv/novatel/messages.hpp"
 
 namespace ugv::novatel {
@@ -89,7 +92,8 @@ public:
 
 private:
     int64_t fallback_utime(int64_t arrival_utime, std::size_t frame_bytes) const;
-    bool accept(int rank, int64_t arrival_utime, int64_t (&last_seen)[4]);
+    using SourceTimes = std::array<int64_t, kSourceRanks>;  // last arrival by source rank, 0 = never
+    bool accept(int rank, int64_t arrival_utime, SourceTimes& last_seen);
     Fix fix_from_position(const Position& p, FrameKind kind, int64_t arrival, std::size_t bytes);
     VelocityFix velocity_from_log(const Velocity& v, FrameKind kind, int64_t arrival, std::size_t bytes);
     Fix fix_from_gga(const Gga& g, int64_t arrival, std::size_t bytes);
@@ -103,8 +107,8 @@ private:
     ClockOffsetTracker clock_;
     uint32_t last_time_status_ = 20;
     uint64_t superseded_ = 0;
-    int64_t position_seen_[4] = {0, 0, 0, 0};  // last arrival by source rank
-    int64_t velocity_seen_[4] = {0, 0, 0, 0};
+    SourceTimes position_seen_{};
+    SourceTimes velocity_seen_{};
     // NMEA: a GGA waits for the GST of the same epoch once GSTs have been seen.
     std::optional<Fix> pending_gga_;
     double pending_gga_utc_s_ = kNaN;

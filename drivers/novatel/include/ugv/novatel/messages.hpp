@@ -7,16 +7,12 @@
 #include <string>
 #include <variant>
 
+#include "ugv/novatel/log_table.hpp"  // log_id, for the users of these structs
 #include "ugv/novatel/stream_splitter.hpp"
 
 namespace ugv::novatel {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Message ids of the logs we decode (binary header field; ASCII logs carry the name).
-namespace log_id {
-inline constexpr uint16_t bestpos = 42, psrpos = 47, bestvel = 99, psrvel = 100, time = 101;
-}
 
 // The header shared by binary and ASCII logs. Short headers (binary AA 44 13, ASCII %)
 // carry only the id/name, week and milliseconds; the other fields stay at their defaults.
@@ -34,7 +30,7 @@ struct LogHeader
     uint16_t software_build = 0;
 };
 
-// BESTPOS or PSRPOS.
+// The BESTPOS body layout (the logs that have it: log_table.hpp).
 struct Position
 {
     LogHeader header;
@@ -55,7 +51,7 @@ struct Position
     int satellites_used = -1;         // #GPS L1 used in the solution
 };
 
-// BESTVEL or PSRVEL.
+// The BESTVEL body layout.
 struct Velocity
 {
     LogHeader header;
