@@ -1,6 +1,7 @@
 // THE one place where the 3DM-GX1's NED-style attitude becomes the project's convention
-// (DESIGN.md section 3): body frame X forward, Y left, Z up (FLU); world frame ENU; the
-// quaternion rotates body vectors into ENU; yaw 0 = east, counter-clockwise positive.
+// (docs/ARCHITECTURE.md, "Frames, time and units"): body frame X forward, Y left, Z up
+// (FLU); world frame ENU; the quaternion rotates body vectors into ENU; yaw 0 = east,
+// counter-clockwise positive.
 //
 // The device: sensor axes X forward, Y right, Z down (FRD); Euler angles roll, pitch, yaw
 // (ZYX) of FRD relative to NED, yaw from magnetic north clockwise. Then

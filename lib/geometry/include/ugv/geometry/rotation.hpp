@@ -1,5 +1,5 @@
-// Rotations in the project's frames (DESIGN.md section 3): body X forward, Y left, Z up;
-// world local ENU; yaw 0 = east, counter-clockwise positive.
+// Rotations in the project's frames (docs/ARCHITECTURE.md, "Frames, time and units"): body
+// X forward, Y left, Z up; world local ENU; yaw 0 = east, counter-clockwise positive.
 //
 // Euler angles are the Z-Y-X (yaw, pitch, roll) sequence: R_body->ENU = Rz(yaw) Ry(pitch) Rx(roll).
 // A small attitude error is expressed as a rotation vector in the world (ENU) frame:
