@@ -10,6 +10,7 @@ void CellArray::clear(std::size_t first, std::size_t count)
     const auto to = static_cast<std::ptrdiff_t>(first + count);
     std::fill(sums_.begin() + from, sums_.begin() + to, CellSums{});
     std::fill(counts_.begin() + from, counts_.begin() + to, 0u);
+    std::fill(extremes_.begin() + from, extremes_.begin() + to, CellExtremes{});
 }
 
 }  // namespace ugv::terrain

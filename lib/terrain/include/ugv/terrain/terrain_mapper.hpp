@@ -68,6 +68,8 @@ struct MapSnapshot
     std::vector<float> mean_z_m;  // NaN = unknown
     std::vector<float> variance_z_m2;
     std::vector<int32_t> count;
+    std::vector<float> max_z_m;   // highest sample of the cell; NaN = unknown
+    std::vector<float> min_z_m;   // lowest sample of the cell; NaN = unknown
 };
 
 // Sums over every cell, ENU heights (for tests of conservation).
