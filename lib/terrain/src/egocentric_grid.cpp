@@ -135,7 +135,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // trigonometric lookup of section 3.4 reduced to a single entry. A cell of row i and
     // column j (unwrapped) has its centre at x = (i + 1/2) G, y = y_min + (j + 1/2) G (eq.
     // 17-18); about the pivot and turned, over G, that is c i + s j + offset_x along the new
-    // rows and c j - s i + offset_y along the new columns (turn_slots.hpp).
+    // rows and c j - s i + offset_y along the new columns (kernels/turn_slots.hpp).
     const double c = std::cos(angle_rad), s = std::sin(angle_rad);
     const double u = 0.5 - pivot_x_m / grid_m_;               // (centre_x(0) - pivot_x) / G
     const double v = 0.5 + (y_min_m_ - pivot_y_m) / grid_m_;  // (centre_y(0) - pivot_y) / G

@@ -18,7 +18,7 @@
 namespace ugv::terrain {
 
 namespace detail {
-struct PlacedPoints;  // the fusion loop's scratch (src/fusion_kernels.hpp)
+struct PlacedPoints;  // the fusion loop's scratch (src/kernels/fusion_kernels.hpp)
 }
 
 // One batch of points in the body frame (a view; the arrays hold count values each).
