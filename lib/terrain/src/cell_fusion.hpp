@@ -1,7 +1,7 @@
 // The fusion loop's last step, on the map's side: one placed sample into a cell's sums (as
 // two vector adds), its count and its extremes. What the placement kernels computed
-// (kernels/fusion_kernels.hpp) ends here; a new per-cell quantity is one more line in
-// add_placed. Private to the library.
+// (kernels/fusion_kernels.hpp) ends here; a new per-cell quantity goes into CellTally
+// (cell_tally.hpp). Private to the library.
 #pragma once
 
 #include <cstddef>
@@ -39,16 +39,15 @@ inline void fuse_point_into(CellSums& cell, const float* sample, float w)
 struct CellArrays
 {
     CellSums* sums;
-    uint32_t* counts;
-    CellExtremes* extremes;
+    CellTally* tallies;
 
-    explicit CellArrays(CellArray& a) : sums(a.sums_data()), counts(a.counts_data()), extremes(a.extremes_data()) {}
+    explicit CellArrays(CellArray& a) : sums(a.sums_data()), tallies(a.tallies_data()) {}
 
     void add_placed(uint32_t at, const float* sample, float w) const
     {
+        const float z = sample[3];
         fuse_point_into(sums[at], sample, w);
-        ++counts[at];
-        extremes[at].add(sample[3]);
+        tallies[at].add(z);
     }
 };
 
