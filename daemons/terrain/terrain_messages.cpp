@@ -50,6 +50,8 @@ void to_message(const terrain::MapSnapshot& s, const pose_t& pose_msg, int64_t s
     msg.mean_z = s.mean_z_m;
     msg.variance_z = s.variance_z_m2;
     msg.count = s.count;
+    msg.max_z = s.max_z_m;
+    msg.min_z = s.min_z_m;
 }
 
 }  // namespace ugv::terrain_daemon

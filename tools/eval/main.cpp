@@ -1,7 +1,8 @@
 // ugv-eval: terrain maps against ground truth.
 //   ugv-eval compare LOG [--truth FILE | --flat Z [--box X0,Y0,X1,Y1,H ...]] [--all]
 //       the maps of a log (the last, or all) against a height field (ugv-sim world's
-//       truth.hf, or a flat floor with boxes): RMSE, bias, coverage, obstacle detection.
+//       truth.hf, or a flat floor with boxes): RMSE, bias, coverage, obstacle detection,
+//       and the cells' highest samples against the truth (how tall an obstacle's cell says it is).
 //   ugv-eval diff A.lcm B.lcm [--pair time|last] [--max-dz M] [--max-one-sided F] [--all]
 //       the maps of two logs against each other (map_diff.hpp).
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
@@ -47,6 +48,8 @@ MapSnapshot to_snapshot(const terrain_map_t& m)
     s.mean_z_m = m.mean_z;
     s.variance_z_m2 = m.variance_z;
     s.count = m.count;
+    s.max_z_m = m.max_z;
+    s.min_z_m = m.min_z;
     return s;
 }
 
@@ -73,9 +76,11 @@ int compare(const std::string& path, const std::string& channel, const HeightFn&
         const MapMetrics r = evaluate(to_snapshot(map), truth, obstacle_height);
         std::printf("{\"utime\": %lld, \"known\": %d, \"coverage\": %.4f, \"bias_m\": %.5f, \"rmse_m\": %.5f, "
                     "\"mean_cell_variance_m2\": %.6f, \"obstacle_cells\": %d, \"obstacles_detected\": %d, "
-                    "\"false_obstacles\": %d}\n",
+                    "\"false_obstacles\": %d, \"max_bias_m\": %.5f, \"max_rmse_m\": %.5f, "
+                    "\"obstacle_mean_error_m\": %.5f, \"obstacle_max_error_m\": %.5f}\n",
                     static_cast<long long>(map.utime), r.known, r.coverage, r.bias_m, r.rmse_m,
-                    r.mean_cell_variance_m2, r.obstacle_cells, r.obstacles_detected, r.false_obstacles);
+                    r.mean_cell_variance_m2, r.obstacle_cells, r.obstacles_detected, r.false_obstacles, r.max_bias_m,
+                    r.max_rmse_m, r.obstacle_mean_error_m, r.obstacle_max_error_m);
     };
     while (const lcm::LogEvent* ev = log.readNextEvent()) {
         if (ev->channel != channel) continue;

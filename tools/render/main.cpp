@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include <ugv/terrain_map_t.hpp>
@@ -22,6 +23,10 @@ int main(int argc, char** argv)
     app.add_option("--channel", channel, "channel of the maps");
     app.add_option("--every", every, "render every Nth map (0: only the last)")->check(CLI::NonNegativeNumber);
     app.add_option("--cell-px", o.cell_px, "pixels per cell")->check(CLI::Range(1, 20));
+    const std::map<std::string, ugv::render::Layer> layers{
+        {"mean", ugv::render::Layer::mean}, {"max", ugv::render::Layer::max}, {"min", ugv::render::Layer::min}};
+    app.add_option("--layer", o.layer, "height shown: mean, max (highest sample of a cell) or min (lowest)")
+        ->transform(CLI::CheckedTransformer(layers, CLI::ignore_case));
     app.add_flag("--variance", o.variance_panel, "add a panel with the standard deviation");
     app.add_option("--z-min", o.z_min_m, "bottom of the colour scale (m); default: the data's");
     app.add_option("--z-max", o.z_max_m, "top of the colour scale (m); default: the data's");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace ugv::render {
 
@@ -81,13 +82,14 @@ Image render_map(const terrain_map_t& m, const RenderOptions& o)
     const int panels = o.variance_panel ? 2 : 1;
     Image img(2 * kMargin + panels * panel_w + (panels - 1) * kGap, 2 * kMargin + panel_h + kFooter);
     const std::size_t cells = static_cast<std::size_t>(m.nx) * static_cast<std::size_t>(m.ny);
-    if (m.mean_z.size() < cells || m.variance_z.size() < cells) return img;
+    const std::vector<float>& heights = o.layer == Layer::max ? m.max_z : o.layer == Layer::min ? m.min_z : m.mean_z;
+    if (heights.size() < cells || m.variance_z.size() < cells) return img;
 
     double lo = o.z_min_m, hi = o.z_max_m, dev_max = 0.0;
     if (!std::isfinite(lo) || !std::isfinite(hi)) {
         lo = std::numeric_limits<double>::infinity();
         hi = -lo;
-        for (float z : m.mean_z)
+        for (float z : heights)
             if (std::isfinite(z)) {
                 lo = std::min(lo, static_cast<double>(z));
                 hi = std::max(hi, static_cast<double>(z));
@@ -108,7 +110,7 @@ Image render_map(const terrain_map_t& m, const RenderOptions& o)
             const std::size_t k = static_cast<std::size_t>(i * m.ny + j);
             int x = 0, y = 0;
             cell_pixel(m, o.cell_px, i, j, x, y);
-            const float z = m.mean_z[k];
+            const float z = heights[k];
             const Rgb c = std::isfinite(z) ? elevation_colour((z - lo) / (hi - lo)) : kUnknown;
             img.fill_rect(x, y, x + o.cell_px - 1, y + o.cell_px - 1, c);
             if (o.variance_panel) {

@@ -1,7 +1,8 @@
 // A terrain map as a plan view like the report's figure 16: forward is up, left is left,
 // elevation from green (low) through yellow to red (high), unknown cells white, the
-// vehicle's outline in black, its reference point in blue, and a metre scale. Optionally
-// the standard deviation as a second panel (light to dark blue).
+// vehicle's outline in black, its reference point in blue, and a metre scale. The height
+// shown is the cells' mean, or their highest or lowest sample (RenderOptions::layer).
+// Optionally the standard deviation as a second panel (light to dark blue).
 #pragma once
 
 #include <cmath>
@@ -13,9 +14,13 @@
 
 namespace ugv::render {
 
+// Which height a cell is coloured by: its mean, or its highest or lowest sample.
+enum class Layer { mean, max, min };
+
 struct RenderOptions
 {
     int cell_px = 3;
+    Layer layer = Layer::mean;
     bool variance_panel = false;
     double z_min_m = std::numeric_limits<double>::quiet_NaN();  // NaN: from the data
     double z_max_m = std::numeric_limits<double>::quiet_NaN();

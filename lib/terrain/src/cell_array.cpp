@@ -9,7 +9,7 @@ void CellArray::clear(std::size_t first, std::size_t count)
     const auto from = static_cast<std::ptrdiff_t>(first);
     const auto to = static_cast<std::ptrdiff_t>(first + count);
     std::fill(sums_.begin() + from, sums_.begin() + to, CellSums{});
-    std::fill(counts_.begin() + from, counts_.begin() + to, 0u);
+    std::fill(tallies_.begin() + from, tallies_.begin() + to, CellTally{});
 }
 
 }  // namespace ugv::terrain

@@ -5,11 +5,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "turn_slots.hpp"
+#include "kernels/kernel_table.hpp"
 
 namespace ugv::terrain {
 
 const CellSums EgocentricGrid::kEmptyCell{};
+const CellExtremes EgocentricGrid::kNoExtremes{};
 
 namespace {
 
@@ -55,9 +56,8 @@ uint32_t EgocentricGrid::take_slot(int cell)
 {
     const uint32_t s = free_count_ > 0 ? free_[--free_count_] : used_++;
     // A free slot's sums are empty, but a rotation's arithmetic may have written NaN over
-    // its zeros, and its count is any value.
-    pool_.sums(static_cast<int>(s)) = CellSums{};
-    pool_.count(static_cast<int>(s)) = 0;
+    // its zeros, and its count and extremes are any value.
+    pool_.reset(static_cast<int>(s));
     home_[s] = static_cast<uint32_t>(cell);
     slot_[static_cast<std::size_t>(cell)] = s;
     return s;
@@ -80,8 +80,7 @@ void EgocentricGrid::compact_if_sparse()
         while (high > low && pool_.sums(static_cast<int>(high - 1)).empty()) --high;
         if (low >= high) break;
         const int from = static_cast<int>(high - 1), to = static_cast<int>(low);
-        pool_.sums(to) = pool_.sums(from);
-        pool_.count(to) = pool_.count(from);
+        pool_.move(to, from);
         home_[low] = home_[high - 1];
         slot_[home_[low]] = low;
         pool_.clear(high - 1, 1);
@@ -136,7 +135,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // trigonometric lookup of section 3.4 reduced to a single entry. A cell of row i and
     // column j (unwrapped) has its centre at x = (i + 1/2) G, y = y_min + (j + 1/2) G (eq.
     // 17-18); about the pivot and turned, over G, that is c i + s j + offset_x along the new
-    // rows and c j - s i + offset_y along the new columns (turn_slots.hpp).
+    // rows and c j - s i + offset_y along the new columns (kernels/turn_slots.hpp).
     const double c = std::cos(angle_rad), s = std::sin(angle_rad);
     const double u = 0.5 - pivot_x_m / grid_m_;               // (centre_x(0) - pivot_x) / G
     const double v = 0.5 + (y_min_m_ - pivot_y_m) / grid_m_;  // (centre_y(0) - pivot_y) / G
@@ -161,9 +160,10 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // The kernel empties the slots of the cells it turns out of the map and lists them free
     // (free_ has room for every slot, and so have the merge lists).
     detail::TurnTarget target{working_slot_.data(), placed_.data(), free_.data() + free_count_};
-    detail::turn_slots_kernel()(t, pool_.sums_data(), home_.data(), used_, target);
-    const int merges = detail::find_merges_kernel()(working_slot_.data(), home_.data(), placed_.data(), used_,
-                                                    merge_from_.data(), merge_into_.data());
+    const detail::KernelTable& kernels = detail::kernels();
+    kernels.turn_slots(t, pool_.sums_data(), home_.data(), used_, target);
+    const int merges = kernels.find_merges(working_slot_.data(), home_.data(), placed_.data(), used_,
+                                           merge_from_.data(), merge_into_.data());
     slot_.swap(working_slot_);
     // The kernel listed the dropped slots after the free ones: count them in before the
     // merges list theirs.
@@ -171,9 +171,8 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     // The cells that landed on a cell already taken (~1 % of a full map's at 5 deg) pool
     // their sums and counts with it and leave free slots.
     for (int m = 0; m < merges; ++m) {
-        const int into = static_cast<int>(merge_into_[static_cast<std::size_t>(m)]);
         const uint32_t from = merge_from_[static_cast<std::size_t>(m)];
-        pool_.add(into, pool_.sums(static_cast<int>(from)), pool_.count(static_cast<int>(from)));
+        pool_.merge(static_cast<int>(merge_into_[static_cast<std::size_t>(m)]), static_cast<int>(from));
         free_slot(from);
     }
     compact_if_sparse();

@@ -19,6 +19,10 @@ MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, dou
     MapMetrics r;
     double sum = 0.0, sum2 = 0.0, var_sum = 0.0;
     int var_n = 0;
+    const std::size_t cells = static_cast<std::size_t>(m.nx) * static_cast<std::size_t>(m.ny);
+    const bool have_max = m.max_z_m.size() >= cells;
+    double max_sum = 0.0, max_sum2 = 0.0, obstacle_mean_sum = 0.0, obstacle_max_sum = 0.0;
+    int max_n = 0;
     for (int i = 0; i < m.nx; ++i) {
         for (int j = 0; j < m.ny; ++j) {
             const Eigen::Vector2d w = cell_centre_world(m, i, j);
@@ -41,7 +45,23 @@ MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, dou
             r.obstacle_cells += obstacle ? 1 : 0;
             r.obstacles_detected += obstacle && seen ? 1 : 0;
             r.false_obstacles += !obstacle && seen ? 1 : 0;
+            if (obstacle) obstacle_mean_sum += e;
+            const double top = have_max ? static_cast<double>(m.max_z_m[k]) : NAN;
+            if (std::isfinite(top)) {
+                ++max_n;
+                max_sum += top - t;
+                max_sum2 += (top - t) * (top - t);
+                if (obstacle) obstacle_max_sum += top - t;
+            }
         }
+    }
+    if (max_n > 0) {
+        r.max_bias_m = max_sum / max_n;
+        r.max_rmse_m = std::sqrt(max_sum2 / max_n);
+    }
+    if (r.obstacle_cells > 0) {
+        r.obstacle_mean_error_m = obstacle_mean_sum / r.obstacle_cells;
+        if (max_n > 0) r.obstacle_max_error_m = obstacle_max_sum / r.obstacle_cells;
     }
     if (r.cells > 0) r.coverage = static_cast<double>(r.known) / r.cells;
     if (r.known > 0) {

@@ -6,7 +6,8 @@
 #include <limits>
 #include <type_traits>
 
-#include "fusion_kernels.hpp"
+#include "cell_fusion.hpp"
+#include "kernels/kernel_table.hpp"
 #include "ugv/geometry/rotation.hpp"
 #include "ugv/terrain/point_variance.hpp"
 #include "ugv/terrain/spread.hpp"
@@ -207,15 +208,14 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
         ++counters_.rejected_outside_map;
         return;
     }
-    CellSums* const sums = grid.cells().sums_data();
-    uint32_t* const counts = grid.cells().counts_data();
+    const detail::CellArrays cells(grid.cells());
     const float z_f = static_cast<float>(z);
     for (int a = 0; a < fx.count; ++a) {
         for (int b = 0; b < fy.count; ++b) {
             const uint32_t at = grid.storage_of(grid.physical(fx.first + a, fy.first + b));
             alignas(16) float sample[4];
             detail::store4(sample, detail::Float4{0.0f, fx.centre[a] * g, fy.centre[b] * g, z_f});
-            detail::fuse_point_into(sums[at], counts[at], sample, w * fx.fraction[a] * fy.fraction[b]);
+            cells.add_placed(at, sample, w * fx.fraction[a] * fy.fraction[b]);
         }
     }
     ++counters_.points_fused;
@@ -300,11 +300,11 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
         // then the sums. Only the rare points (invalid, outside, spread) take a branch.
         constexpr std::size_t kChunk = detail::PlacedPoints::kCapacity;
         constexpr bool kColumnRing = std::is_same_v<Grid, WorldGrid>;
-        const detail::PlaceChunk place_chunk = detail::place_chunk_kernel<kColumnRing>();
+        const detail::PlaceChunk place_chunk =
+            kColumnRing ? detail::kernels().place_chunk_world : detail::kernels().place_chunk_egocentric;
         detail::PlacedPoints& placed = *placed_;
         uint64_t fused = 0, non_finite = 0, outside = 0;
-        CellSums* const sums = grid.cells().sums_data();
-        uint32_t* const counts = grid.cells().counts_data();
+        const detail::CellArrays cells(grid.cells());
         for (std::size_t base = 0; base < n; base += kChunk) {
             const std::size_t count = std::min(n - base, kChunk);
             const float* px = batch.x_m + base;
@@ -319,7 +319,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             std::size_t rare_count = 0;
             auto add = [&](std::size_t q) {
                 const uint32_t at = grid.storage_of(placed.cell[q]);
-                detail::fuse_point_into(sums[at], counts[at], placed.sample[q], placed.weight[q]);
+                cells.add_placed(at, placed.sample[q], placed.weight[q]);
             };
             auto add_or_defer = [&](std::size_t q) {
                 if (placed.fuse[q]) [[likely]]
@@ -421,13 +421,17 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     out.mean_z_m.assign(cells, kNanF);
     out.variance_z_m2.assign(cells, kNanF);
     out.count.assign(cells, 0);
+    out.max_z_m.assign(cells, kNanF);
+    out.min_z_m.assign(cells, kNanF);
     const double y_min = -0.5 * ny * g;
-    auto put = [&](std::size_t k, const CellSums& c, uint32_t n) {
+    auto put = [&](std::size_t k, const CellSums& c, uint32_t n, const CellExtremes& e) {
         if (c.empty()) return;
         const CellStatistics s = cell_statistics(c, config_.statistics);
         out.mean_z_m[k] = static_cast<float>(s.mean_z_m);
         out.variance_z_m2[k] = static_cast<float>(s.variance_z_m2);
         out.count[k] = static_cast<int32_t>(std::min<uint32_t>(n, 0x7fffffff));
+        out.max_z_m[k] = e.z_max_m;
+        out.min_z_m[k] = e.z_min_m;
     };
     if (history_.empty()) {
         out.pose = Pose{};
@@ -450,7 +454,8 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         out.x_curr_m = ref.x();
         out.residual_yaw_rad = wrap_angle(yaw - anchor_yaw_rad_);
         for (int i = 0; i < nx; ++i)
-            for (int j = 0; j < ny; ++j) put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->count(i, j));
+            for (int j = 0; j < ny; ++j)
+                put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->count(i, j), ego_->extremes(i, j));
         return;
     }
     // World-aligned: resample into the vehicle's heading at the reference point (nearest cell).
@@ -465,7 +470,7 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         for (int j = 0; j < ny; ++j) {
             const Eigen::Vector2d local((i + 0.5) * g, y_min + (j + 0.5) * g);
             const int c = world_->cell_at(ref + turn * local);
-            if (c >= 0) put(static_cast<std::size_t>(i * ny + j), world_->at(c), world_->count(c));
+            if (c >= 0) put(static_cast<std::size_t>(i * ny + j), world_->at(c), world_->count(c), world_->extremes(c));
         }
     }
 }

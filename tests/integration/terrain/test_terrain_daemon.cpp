@@ -100,6 +100,18 @@ TEST_CASE("ugv-terrain --replay is deterministic and its map shows the box")
     int known = 0;
     for (float z : map.mean_z) known += std::isnan(z) ? 0 : 1;
     CHECK(known > 1000);
+    // The highest and lowest sample of each cell: NaN exactly where the mean is, around it
+    // elsewhere; the box's top is its highest sample.
+    REQUIRE(map.max_z.size() == map.mean_z.size());
+    REQUIRE(map.min_z.size() == map.mean_z.size());
+    int bracketed = 0;
+    for (std::size_t k = 0; k < map.mean_z.size(); ++k) {
+        CHECK(std::isnan(map.max_z[k]) == std::isnan(map.mean_z[k]));
+        CHECK(std::isnan(map.min_z[k]) == std::isnan(map.mean_z[k]));
+        bracketed += map.min_z[k] <= map.mean_z[k] + 1e-5f && map.mean_z[k] <= map.max_z[k] + 1e-5f ? 1 : 0;
+    }
+    CHECK(bracketed == known);
+    CHECK(map.max_z[static_cast<std::size_t>(box)] == Approx(0.5f).margin(0.02));
 }
 
 TEST_CASE("ugv-terrain refuses a bad key with one line and exit status 2")

@@ -83,6 +83,8 @@ inline std::vector<std::string> publish_samples(bus::Bus& b)
     map.mean_z = {0.5f, NAN};
     map.variance_z = {0.01f, NAN};
     map.count = {3, 0};
+    map.max_z = {0.75f, NAN};
+    map.min_z = {0.25f, NAN};
     stamp(map, "terrain_map_t");
     daemon_status_t status{};
     status.name = "ugv-lms";

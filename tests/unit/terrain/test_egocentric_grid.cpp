@@ -74,6 +74,7 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
     EgocentricGrid g(30, 20, 0.5);
     std::vector<CellSums> plain(600);
     std::vector<uint32_t> plain_n(600, 0);
+    std::vector<CellExtremes> plain_e(600);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const auto fuse_some = [&](int samples) {
@@ -87,6 +88,7 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
             g.fuse(cell, xr, yr, z, w);
             fuse_sample(plain[static_cast<std::size_t>(cell)], xr, yr, z, w);
             ++plain_n[static_cast<std::size_t>(cell)];
+            plain_e[static_cast<std::size_t>(cell)].add(static_cast<float>(z));
         }
     };
     // Rows (unwrapped) first .. first + rows - 1 of the plain array made empty, as a wrap does.
@@ -95,6 +97,7 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
             for (int j = 0; j < 20; ++j) {
                 plain[static_cast<std::size_t>(g.physical(i, j))] = CellSums{};
                 plain_n[static_cast<std::size_t>(g.physical(i, j))] = 0;
+                plain_e[static_cast<std::size_t>(g.physical(i, j))] = CellExtremes{};
             }
     };
     const auto check_all = [&]() {
@@ -105,7 +108,14 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
             INFO("cell " << cell);
             REQUIRE(a.empty() == b.empty());
             CHECK(g.count(cell) == plain_n[static_cast<std::size_t>(cell)]);
-            if (b.empty()) continue;
+            const CellExtremes& e = plain_e[static_cast<std::size_t>(cell)];
+            if (b.empty()) {
+                CHECK(std::isnan(g.extremes(cell).z_max_m));
+                CHECK(std::isnan(g.extremes(cell).z_min_m));
+                continue;
+            }
+            CHECK(g.extremes(cell).z_max_m == e.z_max_m);
+            CHECK(g.extremes(cell).z_min_m == e.z_min_m);
             ++known;
             CHECK(a.w == b.w);
             CHECK(a.x_wx == b.x_wx);
@@ -133,6 +143,7 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
     g.clear();
     for (auto& c : plain) c = CellSums{};
     std::fill(plain_n.begin(), plain_n.end(), 0u);
+    std::fill(plain_e.begin(), plain_e.end(), CellExtremes{});
     check_all();
     fuse_some(200);
     check_all();
@@ -203,59 +214,6 @@ TEST_CASE("a pure shift by whole columns keeps the remainders")
 
 namespace {
 
-// What a rotation must give, computed cell by cell in double from the public API: every
-// non-empty cell's samples sit at its centre plus its remainder; turned by the angle about
-// the pivot they land in one cell, and the cells landing together pool their sums.
-struct Expected
-{
-    double w = 0, wx = 0, wy = 0, wz = 0, wz2 = 0;
-    double wx2 = 0, wy2 = 0;  // sum w x^2, sum w y^2 about the new cell's centre
-    uint32_t n = 0;
-    bool ambiguous = false;  // a source landed within 1 mm of a cell edge: float and double may differ
-};
-
-std::vector<Expected> expected_rotation(const EgocentricGrid& g, double angle, double px, double py, int& dropped)
-{
-    std::vector<Expected> out(static_cast<std::size_t>(g.nx() * g.ny()));
-    const double c = std::cos(angle), s = std::sin(angle), grid = g.grid_size_m();
-    dropped = 0;
-    for (int i = 0; i < g.nx(); ++i) {
-        for (int j = 0; j < g.ny(); ++j) {
-            const CellSums& cell = g.at(i, j);
-            if (cell.empty()) continue;
-            float x_re = 0, y_re = 0;
-            mean_offset(cell, x_re, y_re);
-            const double x = g.centre_x_m(i) + x_re - px, y = g.centre_y_m(j) + y_re - py;
-            const double xn = c * x + s * y, yn = c * y - s * x;
-            const double fx = xn / grid, fy = (yn - g.y_min_m()) / grid;
-            if (!(fx >= 0 && fx < g.nx() && fy >= 0 && fy < g.ny())) {
-                ++dropped;
-                continue;
-            }
-            Expected& e = out[static_cast<std::size_t>(static_cast<int>(fx) * g.ny() + static_cast<int>(fy))];
-            const auto near_edge = [](double f) { return std::abs(f - std::round(f)) < 5e-3; };
-            e.ambiguous = e.ambiguous || near_edge(fx) || near_edge(fy);
-            double wz = 0, wz2 = 0;
-            z_sums_about(cell, 0.0, wz, wz2);
-            e.w += cell.w;
-            const double x_rel = xn - (std::floor(fx) + 0.5) * grid;
-            const double y_rel = yn - g.y_min_m() - (std::floor(fy) + 0.5) * grid;
-            e.wx += cell.w * x_rel;
-            e.wy += cell.w * y_rel;
-            // The samples' spread about their mean turns with the frame; without the x-y
-            // covariance (not kept) the two variances mix by cos^2 and sin^2.
-            const double w_var_x = std::max(0.0, cell.x_wx2 - double(cell.x_wx) * cell.x_wx / cell.w);
-            const double w_var_y = std::max(0.0, cell.y_wy2 - double(cell.y_wy) * cell.y_wy / cell.w);
-            e.wx2 += cell.w * x_rel * x_rel + c * c * w_var_x + s * s * w_var_y;
-            e.wy2 += cell.w * y_rel * y_rel + s * s * w_var_x + c * c * w_var_y;
-            e.wz += wz;
-            e.wz2 += wz2;
-            e.n += g.count(i, j);
-        }
-    }
-    return out;
-}
-
 // False, with a warning, where the CPU cannot run the level's code.
 bool cpu_runs(SimdLevel level)
 {
@@ -285,37 +243,47 @@ void fuse_random(EgocentricGrid& g, std::mt19937& rng, float skip_share)
 }
 
 // Turns g by angle about (px, py) with the SIMD build in use and checks every cell against
-// expected_rotation; returns how many non-empty cells were compared.
+// the library's double-precision reference (EgocentricGrid::transform_reference) turning a
+// copy; returns how many non-empty cells were compared.
 int turn_and_compare(EgocentricGrid& g, double angle, double px, double py)
 {
-    int expected_dropped = 0;
-    const std::vector<Expected> expected = expected_rotation(g, angle, px, py, expected_dropped);
+    EgocentricGrid reference = g;
+    std::vector<uint8_t> near_edge;
+    const int expected_dropped = reference.transform_reference(angle, px, py, &near_edge);
     const int dropped = g.transform(angle, px, py);
     CHECK(std::abs(dropped - expected_dropped) <= 2);
     int compared = 0;
     for (int i = 0; i < g.nx(); ++i) {
         for (int j = 0; j < g.ny(); ++j) {
-            const Expected& e = expected[static_cast<std::size_t>(i * g.ny() + j)];
+            const int physical = g.physical(i, j);
+            if (near_edge[static_cast<std::size_t>(physical)]) continue;
+            const CellSums& e = reference.at(i, j);
             const CellSums& cell = g.at(i, j);
-            if (e.ambiguous) continue;
             INFO("angle " << angle << " cell " << i << ", " << j);
-            if (e.n == 0) {
+            if (e.empty()) {
                 CHECK(cell.empty());
                 CHECK(g.count(i, j) == 0);
+                CHECK(std::isnan(g.extremes(i, j).z_max_m));
+                CHECK(std::isnan(g.extremes(i, j).z_min_m));
                 continue;
             }
             REQUIRE_FALSE(cell.empty());
-            CHECK(g.count(i, j) == e.n);
+            CHECK(g.count(i, j) == reference.count(i, j));
             CHECK(cell.w == Approx(e.w).epsilon(1e-5));
-            CHECK(cell.x_wx / cell.w == Approx(e.wx / e.w).margin(1e-4));
-            CHECK(cell.y_wy / cell.w == Approx(e.wy / e.w).margin(1e-4));
-            CHECK(cell.x_wx2 / cell.w == Approx(e.wx2 / e.w).margin(1e-6));
-            CHECK(cell.y_wy2 / cell.w == Approx(e.wy2 / e.w).margin(1e-6));
-            double wz = 0, wz2 = 0;
+            CHECK(cell.x_wx / cell.w == Approx(e.x_wx / e.w).margin(1e-4));
+            CHECK(cell.y_wy / cell.w == Approx(e.y_wy / e.w).margin(1e-4));
+            CHECK(cell.x_wx2 / cell.w == Approx(e.x_wx2 / e.w).margin(1e-6));
+            CHECK(cell.y_wy2 / cell.w == Approx(e.y_wy2 / e.w).margin(1e-6));
+            double wz = 0, wz2 = 0, ewz = 0, ewz2 = 0;
             z_sums_about(cell, 0.0, wz, wz2);
-            CHECK(wz / cell.w == Approx(e.wz / e.w).epsilon(1e-6));
+            z_sums_about(e, 0.0, ewz, ewz2);
+            CHECK(wz / cell.w == Approx(ewz / e.w).epsilon(1e-6));
             const CellStatistics stats = cell_statistics(cell, StatisticsKind::variance_weighted);
-            CHECK(stats.variance_z_m2 == Approx(e.wz2 / e.w - (e.wz / e.w) * (e.wz / e.w)).margin(1e-5));
+            const CellStatistics expected = cell_statistics(e, StatisticsKind::variance_weighted);
+            CHECK(stats.variance_z_m2 == Approx(expected.variance_z_m2).margin(1e-5));
+            // Max of maxes, min of mins: exact, whatever the order of the merges.
+            CHECK(g.extremes(i, j).z_max_m == reference.extremes(i, j).z_max_m);
+            CHECK(g.extremes(i, j).z_min_m == reference.extremes(i, j).z_min_m);
             ++compared;
         }
     }
@@ -438,4 +406,82 @@ TEST_CASE("a map narrower than 16 columns turns like a wide one")
     int compared = 0;
     for (const double angle : {0.005, -0.01, 0.008, -0.004}) compared += turn_and_compare(g, angle, 0.0, 0.0);
     CHECK(compared > 40 * columns);
+}
+
+TEST_CASE("a cell's extremes are the highest and lowest sample fused into it, NaN while it is empty")
+{
+    EgocentricGrid g(10, 4, 1.0);
+    CHECK(std::isnan(g.extremes(3, 1).z_max_m));
+    CHECK(std::isnan(g.extremes(3, 1).z_min_m));
+    for (const double z : {101.25, 99.5, 100.75}) put(g, 3.5f, -0.5f, z);
+    CHECK(g.extremes(3, 1).z_max_m == 101.25f);
+    CHECK(g.extremes(3, 1).z_min_m == 99.5f);
+    CHECK(std::isnan(g.extremes(3, 2).z_max_m));  // the neighbour stays unknown
+    // A single sample is both.
+    put(g, 5.5f, 0.5f, -2.0);
+    CHECK(g.extremes(5, 2).z_max_m == -2.0f);
+    CHECK(g.extremes(5, 2).z_min_m == -2.0f);
+}
+
+TEST_CASE("a wrap keeps the extremes of the rows it keeps and clears those of the rows it recycles")
+{
+    EgocentricGrid g(10, 4, 1.0);
+    for (int i = 0; i < 10; ++i) {
+        put(g, static_cast<float>(i) + 0.5f, 0.5f, i);
+        put(g, static_cast<float>(i) + 0.5f, 0.5f, i + 0.5);
+    }
+    g.wrap_forward(3);
+    for (int i = 0; i < 7; ++i) {
+        CHECK(g.extremes(i, 2).z_max_m == static_cast<float>(i + 3.5));
+        CHECK(g.extremes(i, 2).z_min_m == static_cast<float>(i + 3));
+    }
+    for (int i = 7; i < 10; ++i) CHECK(std::isnan(g.extremes(i, 2).z_max_m));
+    // A recycled row's first sample starts afresh (the old row 0 held 0 and 0.5).
+    put(g, 8.5f, 0.5f, 42.0);
+    CHECK(g.extremes(8, 2).z_max_m == 42.0f);
+    CHECK(g.extremes(8, 2).z_min_m == 42.0f);
+    g.wrap_backward(2);
+    CHECK(std::isnan(g.extremes(0, 2).z_min_m));
+    CHECK(g.extremes(2, 2).z_max_m == 3.5f);
+}
+
+// The reference rotation itself, by hand, and the kernels on the same map: a shift of the
+// frame by half a cell sideways lands two neighbours in one cell and turns one out.
+TEST_CASE("a rotation merges cells landing together (max of maxes, min of mins) and drops those turned out")
+{
+    EgocentricGrid g(10, 10, 1.0);  // x 0..10, y -5..5
+    put(g, 4.9f, 0.95f, 10.0);      // cell (4, 5)
+    put(g, 4.9f, 0.95f, 12.0);
+    put(g, 4.9f, 1.05f, 7.0);       // cell (4, 6)
+    put(g, 9.5f, -4.7f, 3.0);       // cell (9, 0)
+    // The frame's origin moves 0.5 m to the left: y 0.95 -> 0.45 and 1.05 -> 0.55, both in
+    // column 5 (y 0..1, centre 0.5); y -4.7 -> -5.2, outside.
+    const auto check = [](EgocentricGrid& turned, int dropped) {
+        CHECK(dropped == 1);
+        CHECK(turned.known_cells() == 1);
+        CHECK(turned.count(4, 5) == 3);
+        const CellSums& c = turned.at(4, 5);
+        CHECK(c.w == 3.0f);
+        CHECK(c.x_wx == Approx(3 * 0.4).margin(1e-5));       // x 4.9 from the centre 4.5
+        CHECK(c.y_wy == Approx(-0.05).margin(1e-5));         // y_rel -0.05, -0.05, +0.05
+        CHECK(c.y_wy2 == Approx(3 * 0.0025).margin(1e-6));
+        CHECK(cell_statistics(c, StatisticsKind::variance_weighted).mean_z_m == Approx(29.0 / 3.0));
+        CHECK(turned.extremes(4, 5).z_max_m == 12.0f);
+        CHECK(turned.extremes(4, 5).z_min_m == 7.0f);
+        CHECK(std::isnan(turned.extremes(4, 6).z_max_m));
+        CHECK(std::isnan(turned.extremes(9, 0).z_min_m));
+    };
+    EgocentricGrid reference = g;
+    check(reference, reference.transform_reference(0.0, 0.0, 0.5));
+    for (const SimdLevel level : {SimdLevel::generic, SimdLevel::avx2}) {
+        if (!cpu_runs(level)) continue;
+        const ScopedSimdLevel use(level);
+        INFO("simd level " << to_string(level));
+        EgocentricGrid turned = g;
+        check(turned, turned.transform(0.0, 0.0, 0.5));
+        // A cell turned out of the map loses its extremes: the slot a new cell takes starts afresh.
+        put(turned, 9.5f, -4.7f, 1.0);
+        CHECK(turned.extremes(9, 0).z_max_m == 1.0f);
+        CHECK(turned.extremes(9, 0).z_min_m == 1.0f);
+    }
 }

@@ -34,4 +34,29 @@ TEST_CASE("evaluate: bias, RMSE, coverage and obstacles against a height field")
     CHECK(r.obstacle_cells == 1);
     CHECK(r.obstacles_detected == 1);
     CHECK(r.false_obstacles == 0);
+    CHECK(r.max_bias_m == 0.0);  // no max_z_m in this map
+    CHECK(r.obstacle_mean_error_m == Approx(-0.2).epsilon(1e-6));
+}
+
+TEST_CASE("evaluate: the highest sample of a wall's cell says how tall the wall is")
+{
+    MapSnapshot m;
+    m.nx = 1;
+    m.ny = 2;
+    m.resolution_m = 1.0;
+    m.origin_x_m = 0.0;
+    m.origin_y_m = -1.0;
+    m.pose.orientation = Eigen::Quaterniond::Identity();
+    // Cell (0, 0): ground; cell (0, 1): a 1.5 m wall whose samples span 0 to 1.5 m.
+    m.mean_z_m = {0.01f, 0.6f};
+    m.variance_z_m2 = {0.0f, 0.3f};
+    m.max_z_m = {0.03f, 1.5f};
+    m.min_z_m = {-0.01f, 0.0f};
+    auto truth = [](double, double y) { return y > 0.0 ? 1.5 : 0.0; };
+    const MapMetrics r = evaluate(m, truth, 0.2);
+    CHECK(r.obstacle_cells == 1);
+    CHECK(r.obstacle_mean_error_m == Approx(-0.9).epsilon(1e-6));
+    CHECK(r.obstacle_max_error_m == Approx(0.0).margin(1e-6));
+    CHECK(r.max_bias_m == Approx(0.015).epsilon(1e-5));  // (0.03 + 0) / 2
+    CHECK(r.max_rmse_m == Approx(std::sqrt(0.0009 / 2)).epsilon(1e-5));
 }

@@ -64,6 +64,8 @@ TEST_CASE("the plan view: unknown white, elevation coloured, forward up and left
     m.mean_z.assign(400, NAN);
     m.variance_z.assign(400, NAN);
     m.count.assign(400, 0);
+    m.max_z.assign(400, NAN);
+    m.min_z.assign(400, NAN);
     m.mean_z[19 * 20 + 0] = 1.0f;  // far, rightmost: top right of the picture, the highest (red)
     m.variance_z[19 * 20 + 0] = 0.04f;
     m.mean_z[0 * 20 + 19] = 0.0f;  // near, leftmost: bottom left, the lowest (green)
@@ -100,6 +102,8 @@ TEST_CASE("the vehicle outline and reference point are drawn where the map says"
     m.mean_z.assign(1600, NAN);
     m.variance_z.assign(1600, NAN);
     m.count.assign(1600, 0);
+    m.max_z.assign(1600, NAN);
+    m.min_z.assign(1600, NAN);
     RenderOptions o;
     o.cell_px = 4;
     const Image img = render_map(m, o);
@@ -108,4 +112,52 @@ TEST_CASE("the vehicle outline and reference point are drawn where the map says"
     CHECK(img.at(90, 169) == kReference);
     // The outline's front edge (body x 2.0): y px = 10 + (9.5 - 2.0) / 0.25 * 4 = 130.
     CHECK(img.at(90, 130) == kVehicle);
+}
+
+TEST_CASE("the max and min layers colour each cell by its highest or lowest sample")
+{
+    terrain_map_t m{};
+    m.nx = m.ny = 10;
+    m.ncells = 100;
+    m.resolution = 0.5f;
+    m.origin_x = 10.0f;  // the vehicle outside the picture
+    m.origin_y = -2.5f;
+    m.mean_z.assign(100, NAN);
+    m.variance_z.assign(100, NAN);
+    m.count.assign(100, 0);
+    m.max_z.assign(100, NAN);
+    m.min_z.assign(100, NAN);
+    // Two known cells: a wall's (mean 0.5, samples 0 .. 1.5) and the ground's (mean, max and
+    // min 0.1 .. 0.2).
+    const std::size_t wall = 3 * 10 + 4, ground = 6 * 10 + 2;
+    m.mean_z[wall] = 0.5f;
+    m.max_z[wall] = 1.5f;
+    m.min_z[wall] = 0.0f;
+    m.mean_z[ground] = 0.15f;
+    m.max_z[ground] = 0.2f;
+    m.min_z[ground] = 0.1f;
+    m.variance_z[wall] = m.variance_z[ground] = 0.01f;
+    RenderOptions o;
+    o.cell_px = 2;
+    int wx = 0, wy = 0, gx = 0, gy = 0;
+    cell_pixel(m, 2, 3, 4, wx, wy);
+    cell_pixel(m, 2, 6, 2, gx, gy);
+    // Mean: the wall is highest (red), the ground lowest (green).
+    Image img = render_map(m, o);
+    CHECK(img.at(wx, wy) == elevation_colour(1.0));
+    CHECK(img.at(gx, gy) == elevation_colour(0.0));
+    // Max on a fixed scale 0 .. 1.5: the wall's cell is at the top.
+    o.layer = Layer::max;
+    o.z_min_m = 0.0;
+    o.z_max_m = 1.5;
+    img = render_map(m, o);
+    CHECK(img.at(wx, wy) == elevation_colour(1.0));
+    CHECK(img.at(gx, gy) == elevation_colour(0.2 / 1.5));
+    // Min on the same scale: the wall's lowest sample is the ground in front of it.
+    o.layer = Layer::min;
+    img = render_map(m, o);
+    CHECK(img.at(wx, wy) == elevation_colour(0.0));
+    CHECK(img.at(gx, gy) == elevation_colour(0.1 / 1.5));
+    cell_pixel(m, 2, 0, 0, wx, wy);
+    CHECK(img.at(wx, wy) == kUnknown);
 }

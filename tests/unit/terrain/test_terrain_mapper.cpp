@@ -350,10 +350,13 @@ namespace {
 // Two poses 20 ms apart, and 361 points (not a multiple of 8) over that time: ground
 // ahead, some far outside, some with a NaN, a negative variance or a large variance (to
 // be spread), fused into a map of the given mode.
-MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters)
+// max_span_s: above 0.02, the scan takes the vector placement (the end transforms blended);
+// below, the scalar path (each point's pose interpolated on its own).
+MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters, double max_span_s = 0.1)
 {
     MapConfig c;
     c.mode = mode;
+    c.max_interpolation_span_s = max_span_s;
     TerrainMapper m(c);
     REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0, 1e-4)) == PoseHistory::AddResult::added);
     REQUIRE(m.add_pose(pose_at(20'000, 0.02, 0.001, 0.004, 2e-4)) == PoseHistory::AddResult::added);
@@ -409,5 +412,87 @@ TEST_CASE("the fusion's AVX2 and generic builds give the same map and the same c
             CHECK(wide.variance_z_m2[k] == Approx(generic.variance_z_m2[k]).margin(1e-6));
         }
         CHECK(known > 100);
+    }
+}
+
+// The scalar path (fuse_point, CellArray::fuse) is the fusion's reference: each placement
+// kernel must put every point where it puts it, up to the blend of the end transforms
+// (< 1e-5 m here) and float rounding, which may move a point that lies on a cell edge.
+TEST_CASE("each placement kernel fuses a scan as the scalar path does")
+{
+    for (const SimdLevel level : {SimdLevel::generic, SimdLevel::avx2}) {
+        if (static_cast<int>(level) > static_cast<int>(best_simd_level())) {
+            WARN("skipped: this CPU cannot run the " << to_string(level) << " code");
+            continue;
+        }
+        const ScopedSimdLevel use(level);
+        for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+            INFO("simd level " << to_string(level) << ", mode " << static_cast<int>(mode));
+            MapCounters kernel_counters, scalar_counters;
+            const MapSnapshot kernel = fuse_mixed_scan(mode, kernel_counters);
+            const MapSnapshot scalar = fuse_mixed_scan(mode, scalar_counters, 0.001);
+            CHECK(kernel_counters.points_fused == scalar_counters.points_fused);
+            CHECK(kernel_counters.points_spread == scalar_counters.points_spread);
+            CHECK(kernel_counters.rejected_non_finite == scalar_counters.rejected_non_finite);
+            CHECK(kernel_counters.rejected_outside_map == scalar_counters.rejected_outside_map);
+            int same = 0, differ = 0;
+            for (std::size_t k = 0; k < scalar.count.size(); ++k) {
+                if (kernel.count[k] != scalar.count[k]) {
+                    ++differ;
+                    continue;
+                }
+                if (scalar.count[k] == 0) continue;
+                INFO("cell " << k);
+                ++same;
+                CHECK(kernel.mean_z_m[k] == Approx(scalar.mean_z_m[k]).margin(1e-4));
+                CHECK(kernel.max_z_m[k] == Approx(scalar.max_z_m[k]).margin(1e-4));
+                CHECK(kernel.min_z_m[k] == Approx(scalar.min_z_m[k]).margin(1e-4));
+            }
+            CHECK(same > 100);
+            CHECK(differ <= 4);
+        }
+    }
+}
+
+TEST_CASE("the snapshot gives each cell's highest and lowest sample, NaN where unknown, through a wrap")
+{
+    for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+        INFO("mode " << static_cast<int>(mode));
+        MapConfig c = base_config();
+        c.mode = mode;
+        TerrainMapper m(c);
+        REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        // A wall's cell: ground in front of it and the wall's face up to 1.5 m, all within
+        // cell (row 10, column 75) of the egocentric map (x 2.0..2.2 m from the rear bumper).
+        Points p;
+        for (const float z : {0.0f, 0.25f, 1.5f, 0.75f, 0.05f}) p.add(-0.5f + 2.1f, 0.1f, z);
+        p.add(-0.5f + 0.1f, 0.1f, -0.2f);  // row 0: driven over by the wrap below
+        REQUIRE(m.fuse(p.batch(0)) == 6);
+        MapSnapshot s;
+        m.snapshot(s);
+        const std::size_t wall = 10 * 150 + 75;
+        CHECK(s.max_z_m[wall] == 1.5f);
+        CHECK(s.min_z_m[wall] == 0.0f);
+        CHECK(s.mean_z_m[wall] < 0.6f);  // the mean hides how tall it is
+        CHECK(s.max_z_m[0 * 150 + 75] == -0.2f);
+        CHECK(s.min_z_m[0 * 150 + 75] == -0.2f);
+        int unknown = 0;
+        for (std::size_t k = 0; k < s.count.size(); ++k) {
+            if (s.count[k] != 0) continue;
+            CHECK(std::isnan(s.max_z_m[k]));
+            CHECK(std::isnan(s.min_z_m[k]));
+            ++unknown;
+        }
+        // The world-aligned map is resampled by nearest cell: a world cell may show twice.
+        CHECK(unknown >= 150 * 150 - (mode == MapMode::egocentric ? 2 : 4));
+        CHECK(unknown <= 150 * 150 - 2);
+        // One metre forward: five rows wrapped; the wall is now in row 5, row 0's cell gone.
+        REQUIRE(m.add_pose(pose_at(1'000'000, 1.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        m.snapshot(s);
+        CHECK(s.max_z_m[5 * 150 + 75] == 1.5f);
+        CHECK(s.min_z_m[5 * 150 + 75] == 0.0f);
+        int known = 0;
+        for (std::size_t k = 0; k < s.count.size(); ++k) known += std::isnan(s.max_z_m[k]) ? 0 : 1;
+        CHECK(known == 1);
     }
 }

@@ -39,11 +39,12 @@ for v in A B; do
     export_library "$rev" "$v"
     src="$work/$v/terrain"
     objects=()
-    for f in "$src"/src/*.cpp; do
+    # Every source of the library, its subfolders (src/kernels) included.
+    while IFS= read -r f; do
         o="$work/$v/$(basename "$f" .cpp).o"
         g++ "${flags[@]}" -Dugv=ugv$v -I"$src/include" -I"$src/src" -c "$f" -o "$o"
         objects+=("$o")
-    done
+    done < <(find "$src/src" -name '*.cpp' | sort)
     ar rcs "$work/libterrain$v.a" "${objects[@]}"
     g++ "${flags[@]}" -Dugv=ugv$v -I"$src/include" -c "$here/rotation_driver.cpp" -o "$work/driver$v.o"
 done

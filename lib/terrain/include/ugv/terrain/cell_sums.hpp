@@ -26,7 +26,7 @@ enum class StatisticsKind : int8_t {
 };
 
 // The order of the fields lets the fusion loop add a sample with two 4-float vector adds
-// (src/fuse_kernel.hpp).
+// (src/cell_fusion.hpp).
 struct alignas(32) CellSums
 {
     // NaN while the cell is empty, so that one comparison (!(w <= c.w)) tells the fusion

@@ -8,7 +8,8 @@
 // index of its sums there (its slot) or kNoSlot while it is empty.
 // A rotation (eq. 9-16) then works on the pool in order, re-expressing each cell's sums
 // where they are, and moves only the 4-byte slots into the working index grid: the cells'
-// 32 bytes of sums never move, and unknown ground costs nothing.
+// 32 bytes of sums never move, nor do the other per-cell quantities kept per slot
+// (cell_array.hpp), and unknown ground costs nothing.
 #pragma once
 
 #include <cstdint>
@@ -61,6 +62,13 @@ public:
         return s == kNoSlot ? 0u : pool_.count(static_cast<int>(s));
     }
     uint32_t count(int i, int j) const { return count(physical(i, j)); }
+    // NaN for an empty cell.
+    const CellExtremes& extremes(int cell) const
+    {
+        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
+        return s == kNoSlot ? kNoExtremes : pool_.extremes(static_cast<int>(s));
+    }
+    const CellExtremes& extremes(int i, int j) const { return extremes(physical(i, j)); }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
     {
         pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w);
@@ -92,11 +100,21 @@ public:
     // the number of non-empty cells that fell outside and were dropped.
     int transform(double angle_rad, double pivot_x_m, double pivot_y_m);
 
+    // The same rotation as transform(), cell by cell in double, written as the report puts
+    // it (rotation_reference.cpp): the specification that transform()'s vector kernels are
+    // tested against, not for the hot path. The cells landing together are merged in
+    // unwrapped order and the pool is rebuilt in that order. near_edge, if given, is set per
+    // physical cell: 1 where a cell landed within 0.005 cells of a cell edge, where the
+    // kernels' float arithmetic may bin it into the neighbour.
+    int transform_reference(double angle_rad, double pivot_x_m, double pivot_y_m,
+                            std::vector<uint8_t>* near_edge = nullptr);
+
     void clear();
 
 private:
     static constexpr uint32_t kNoSlot = 0xffffffffu;
     static const CellSums kEmptyCell;
+    static const CellExtremes kNoExtremes;
 
     uint32_t take_slot(int cell);
     // Empties slot s and lists it free. Does not touch the index of the cell it belonged to.

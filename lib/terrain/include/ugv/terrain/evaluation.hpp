@@ -20,6 +20,13 @@ struct MapMetrics
     int obstacle_cells = 0;   // known cells whose truth is above the threshold
     int obstacles_detected = 0;  // ... and whose map height is above half the threshold
     int false_obstacles = 0;  // known cells below the threshold that the map puts above half of it
+    // The highest sample of each known cell (max_z_m) against the truth: a wall's cell
+    // says how tall the wall is where its mean, which also holds the ground in front of
+    // it and the face below the top, does not. 0 when the map has no max_z_m.
+    double max_bias_m = 0.0;   // mean of (max - truth) over known cells
+    double max_rmse_m = 0.0;
+    double obstacle_mean_error_m = 0.0;  // mean of (mean - truth) over known obstacle cells
+    double obstacle_max_error_m = 0.0;   // mean of (max - truth) over known obstacle cells
 };
 
 // truth(x_m, y_m): the ENU height at a world position, NaN where it is not defined (those

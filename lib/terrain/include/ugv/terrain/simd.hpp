@@ -1,8 +1,9 @@
 // Which vector code the terrain library's hot loops run. The library is built for the
 // architecture's baseline (x86-64: SSE2), so that one package runs on any vehicle computer;
 // where the CPU has AVX2 and FMA (x86-64 since 2013-2015) the placement of points in the
-// fusion loop and the rotation of the egocentric map run 8-wide code compiled for them,
-// chosen once at start-up.
+// fusion loop and the rotation of the egocentric map run 8-wide code compiled for them.
+// Each level is one table of the kernels (src/kernels/kernel_table.hpp), chosen once at
+// start-up; the map calls the kernels only through the table in use.
 #pragma once
 
 namespace ugv::terrain {

@@ -18,7 +18,7 @@
 namespace ugv::terrain {
 
 namespace detail {
-struct PlacedPoints;  // the fusion loop's scratch (src/fusion_kernels.hpp)
+struct PlacedPoints;  // the fusion loop's scratch (src/kernels/fusion_kernels.hpp)
 }
 
 // One batch of points in the body frame (a view; the arrays hold count values each).
@@ -87,6 +87,8 @@ struct MapSnapshot
     std::vector<float> mean_z_m;  // NaN = unknown
     std::vector<float> variance_z_m2;
     std::vector<int32_t> count;
+    std::vector<float> max_z_m;   // highest sample of the cell; NaN = unknown
+    std::vector<float> min_z_m;   // lowest sample of the cell; NaN = unknown
 };
 
 // Sums over every cell, ENU heights (for tests of conservation).

@@ -1,12 +1,11 @@
 // The fusion loop's inner parts, written with vectors (GCC/Clang vector extensions: SSE on
 // x86-64 without -march, NEON on ARM, scalar code elsewhere; AVX2 where the CPU has it,
-// see simd.hpp). Private to the library.
+// kernel_table.hpp). Private to the library.
 //
 // place_math / place_points / place_chunk: points from the body frame into the map (the
 //   end transforms of the scan blended at each point's time), eq. 19 variance, weight,
-//   cell, offset from the cell centre, and what to do with each point; no branch.
-// fuse_point_into: one sample into one cell, exactly what fuse_sample does, as two vector
-//   adds on the cell's two halves.
+//   cell, offset from the cell centre, and what to do with each point; no branch. The
+//   samples then go into the cells on the map's side (cell_fusion.hpp).
 #pragma once
 
 #include <algorithm>
@@ -16,7 +15,7 @@
 #include <limits>
 
 #include "float4.hpp"
-#include "ugv/terrain/cell_sums.hpp"
+#include "float8.hpp"
 
 namespace ugv::terrain::detail {
 
@@ -170,31 +169,9 @@ inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float
 using PlaceChunk = void (*)(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
 template <bool kColumnRing>
 void place_chunk_generic(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
-// The kernel of the level simd_level() names.
+#if defined(UGV_TERRAIN_HAVE_AVX2)
 template <bool kColumnRing>
-PlaceChunk place_chunk_kernel();
-
-// The cell's layout as two vectors: {w, x_wx, y_wy, z_wz} and {z_ref_m, x_wx2, y_wy2, z_wz2}.
-static_assert(offsetof(CellSums, x_wx) == 4 && offsetof(CellSums, y_wy) == 8 && offsetof(CellSums, z_wz) == 12);
-static_assert(offsetof(CellSums, z_ref_m) == 16 && offsetof(CellSums, x_wx2) == 20 &&
-              offsetof(CellSums, y_wy2) == 24 && offsetof(CellSums, z_wz2) == 28);
-
-// sample = {0, x_rel_m, y_rel_m, z_m}. The reference check comes first, on scalars, so that
-// no vector is live across the (rare) call.
-inline void fuse_point_into(CellSums& cell, uint32_t& count, const float* sample, float w)
-{
-    if (!(w <= cell.w)) move_reference(cell, sample[3]);  // empty (w is NaN), or w outweighs the cell: see fuse_sample
-    Float4 sums, squares;
-    std::memcpy(&sums, &cell.w, sizeof sums);
-    std::memcpy(&squares, &cell.z_ref_m, sizeof squares);
-    const Float4 reference = __builtin_shufflevector(squares, Float4{}, 4, 4, 4, 0);  // {0, 0, 0, z_ref}
-    const Float4 d = load4(sample) - reference;  // loaded after the call: nothing vector is live across it                                       // {0, x, y, dz}
-    const Float4 weighted = (d + Float4{1.0f, 0.0f, 0.0f, 0.0f}) * w;                 // {w, wx, wy, w dz}
-    sums += weighted;
-    squares += weighted * d;  // {+0: z_ref stays, w x^2, w y^2, w dz^2}
-    std::memcpy(&cell.w, &sums, sizeof sums);
-    std::memcpy(&cell.z_ref_m, &squares, sizeof squares);
-    ++count;
-}
+void place_chunk_avx2(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
+#endif
 
 }  // namespace ugv::terrain::detail

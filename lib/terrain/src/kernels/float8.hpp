@@ -1,6 +1,6 @@
-// 8-float AVX2 vectors for the hot loops' second build (see simd.hpp). Everything here is
+// 8-float AVX2 vectors for the hot loops' second build (kernel_table.hpp). Everything here is
 // compiled for AVX2 and FMA by a per-function target attribute, so a translation unit
-// built for the baseline can hold it; it must only run where simd_level() is avx2. Only
+// built for the baseline can hold it; it must only run where best_simd_level() is avx2. Only
 // on x86-64 with GCC or Clang (UGV_TERRAIN_HAVE_AVX2). Private to the library.
 #pragma once
 

@@ -1,11 +1,9 @@
 // The placement pass of the fusion loop over one chunk of points, in two builds: four
-// points at a time for any CPU, eight at a time with AVX2 and FMA (see simd.hpp). Both
+// points at a time for any CPU, eight at a time with AVX2 and FMA (kernel_table.hpp). Both
 // run place_math; they differ in how many lanes and in how the outputs are stored.
 #include <cstring>
 
-#include "float8.hpp"
 #include "fusion_kernels.hpp"
-#include "ugv/terrain/simd.hpp"
 
 namespace ugv::terrain::detail {
 
@@ -78,6 +76,8 @@ UGV_AVX2 inline void place_points8(const PlacementOf<Float8>& p, const float* co
     }
 }
 
+}  // namespace
+
 template <bool kColumnRing>
 UGV_AVX2 void place_chunk_avx2(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out)
 {
@@ -88,22 +88,12 @@ UGV_AVX2 void place_chunk_avx2(const Placement& p, const float* const* in, std::
     place_from<kColumnRing>(p, in, k, count, out);  // the last 1-7 points, four at a time
 }
 
-}  // namespace
+template void place_chunk_avx2<false>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
+template void place_chunk_avx2<true>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
 
 #endif
-
-template <bool kColumnRing>
-PlaceChunk place_chunk_kernel()
-{
-#if defined(UGV_TERRAIN_HAVE_AVX2)
-    if (simd_level() == SimdLevel::avx2) return place_chunk_avx2<kColumnRing>;
-#endif
-    return place_chunk_generic<kColumnRing>;
-}
 
 template void place_chunk_generic<false>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
 template void place_chunk_generic<true>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
-template PlaceChunk place_chunk_kernel<false>();
-template PlaceChunk place_chunk_kernel<true>();
 
 }  // namespace ugv::terrain::detail

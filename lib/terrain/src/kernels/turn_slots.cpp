@@ -5,7 +5,6 @@
 
 #include "float4.hpp"
 #include "float8.hpp"
-#include "ugv/terrain/simd.hpp"
 
 namespace ugv::terrain::detail {
 
@@ -301,21 +300,5 @@ UGV_AVX2 int find_merges_avx2(const uint32_t* working_slot, const uint32_t* home
 }
 
 #endif
-
-TurnSlots turn_slots_kernel()
-{
-#if defined(UGV_TERRAIN_HAVE_AVX2)
-    if (simd_level() == SimdLevel::avx2) return turn_slots_avx2;
-#endif
-    return turn_slots_generic;
-}
-
-FindMerges find_merges_kernel()
-{
-#if defined(UGV_TERRAIN_HAVE_AVX2)
-    if (simd_level() == SimdLevel::avx2) return find_merges_avx2;
-#endif
-    return find_merges_generic;
-}
 
 }  // namespace ugv::terrain::detail

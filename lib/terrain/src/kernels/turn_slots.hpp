@@ -1,5 +1,5 @@
 // The egocentric map's rotation (eq. 9-16) on its pool of known cells, in two builds of
-// the same steps: 4-float vectors for any CPU and 8-float AVX2/FMA vectors (see simd.hpp).
+// the same steps: 4-float vectors for any CPU and 8-float AVX2/FMA vectors (kernel_table.hpp).
 // Each cell's position is its centre (eq. 17-18) plus its remainder (eq. 9-10); turned with
 // the frame (eq. 11-14) it gives the cell it lands in and the new remainders (eq. 15-16,
 // 5-7). Its sums are re-expressed about the new cell's centre where they are, in the pool,
@@ -72,9 +72,5 @@ int find_merges_generic(const uint32_t* working_slot, const uint32_t* home, cons
 int find_merges_avx2(const uint32_t* working_slot, const uint32_t* home, const uint8_t* placed, uint32_t slots,
                      uint32_t* merge_from, uint32_t* merge_into);
 #endif
-
-// The kernels of the level simd_level() names.
-TurnSlots turn_slots_kernel();
-FindMerges find_merges_kernel();
 
 }  // namespace ugv::terrain::detail
