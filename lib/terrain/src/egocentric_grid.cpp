@@ -11,6 +11,7 @@ namespace ugv::terrain {
 
 const CellSums EgocentricGrid::kEmptyCell{};
 const CellExtremes EgocentricGrid::kNoExtremes{};
+const CellTally EgocentricGrid::kNoTally{};
 
 namespace {
 

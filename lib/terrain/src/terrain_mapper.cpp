@@ -168,8 +168,9 @@ void TerrainMapper::move_egocentric(const Pose& pose)
         ++counters_.rotations;
         local.setZero();
     }
-    // Translation (eq. 5-8 as corrected in DESIGN §7): the motion projected on the map's
-    // heading accumulates in x_curr; wrap as many whole rows as it holds, keep the rest.
+    // Translation (eq. 5-8 as corrected in docs/ARCHITECTURE.md, "Corrections to the
+    // report's equations"): the motion projected on the map's heading accumulates in
+    // x_curr; wrap as many whole rows as it holds, keep the rest.
     // The 1 nm tolerance keeps exactly k cells of travel from rounding to k - 1.
     const Eigen::Vector2d ex(std::cos(anchor_yaw_rad_), std::sin(anchor_yaw_rad_));
     const Eigen::Vector2d ey(-ex.y(), ex.x());
@@ -420,18 +421,14 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     out.statistics = config_.statistics;
     out.mean_z_m.assign(cells, kNanF);
     out.variance_z_m2.assign(cells, kNanF);
-    out.count.assign(cells, 0);
-    out.max_z_m.assign(cells, kNanF);
-    out.min_z_m.assign(cells, kNanF);
+    out.reset(cells);
     const double y_min = -0.5 * ny * g;
-    auto put = [&](std::size_t k, const CellSums& c, uint32_t n, const CellExtremes& e) {
+    auto put = [&](std::size_t k, const CellSums& c, const CellTally& t) {
         if (c.empty()) return;
         const CellStatistics s = cell_statistics(c, config_.statistics);
         out.mean_z_m[k] = static_cast<float>(s.mean_z_m);
         out.variance_z_m2[k] = static_cast<float>(s.variance_z_m2);
-        out.count[k] = static_cast<int32_t>(std::min<uint32_t>(n, 0x7fffffff));
-        out.max_z_m[k] = e.z_max_m;
-        out.min_z_m[k] = e.z_min_m;
+        out.put(k, t);
     };
     if (history_.empty()) {
         out.pose = Pose{};
@@ -455,7 +452,7 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         out.residual_yaw_rad = wrap_angle(yaw - anchor_yaw_rad_);
         for (int i = 0; i < nx; ++i)
             for (int j = 0; j < ny; ++j)
-                put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->count(i, j), ego_->extremes(i, j));
+                put(static_cast<std::size_t>(i * ny + j), ego_->at(i, j), ego_->tally(i, j));
         return;
     }
     // World-aligned: resample into the vehicle's heading at the reference point (nearest cell).
@@ -470,7 +467,7 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         for (int j = 0; j < ny; ++j) {
             const Eigen::Vector2d local((i + 0.5) * g, y_min + (j + 0.5) * g);
             const int c = world_->cell_at(ref + turn * local);
-            if (c >= 0) put(static_cast<std::size_t>(i * ny + j), world_->at(c), world_->count(c), world_->extremes(c));
+            if (c >= 0) put(static_cast<std::size_t>(i * ny + j), world_->at(c), world_->tally(c));
         }
     }
 }

@@ -26,6 +26,7 @@ public:
     uint32_t count(int cell) const { return tallies_[static_cast<std::size_t>(cell)].count; }
     uint32_t& count(int cell) { return tallies_[static_cast<std::size_t>(cell)].count; }
     const CellExtremes& extremes(int cell) const { return tallies_[static_cast<std::size_t>(cell)].extremes; }
+    const CellTally& tally(int cell) const { return tallies_[static_cast<std::size_t>(cell)]; }
     CellExtremes& extremes(int cell) { return tallies_[static_cast<std::size_t>(cell)].extremes; }
     CellSums* sums_data() { return sums_.data(); }
     CellTally* tallies_data() { return tallies_.data(); }

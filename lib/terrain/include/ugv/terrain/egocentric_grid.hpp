@@ -1,6 +1,7 @@
 // The report's wrappable grid (sections 3.2-3.4). The grid's local frame has X along the
 // map heading and Y to the left; row i (unwrapped) covers x in [i G, (i+1) G), column j
-// covers y in [y_min + j G, y_min + (j+1) G) with y_min = -ny G / 2 (centred, DESIGN §7).
+// covers y in [y_min + j G, y_min + (j+1) G) with y_min = -ny G / 2 (centred: see
+// docs/ARCHITECTURE.md, "Corrections to the report's equations").
 // Rows are stored as a ring: unwrapped row i lives in physical row (i + m_i) mod nx
 // (eq. 5-6), so a forward wrap is an index update plus clearing the rows left behind.
 //
@@ -69,6 +70,13 @@ public:
         return s == kNoSlot ? kNoExtremes : pool_.extremes(static_cast<int>(s));
     }
     const CellExtremes& extremes(int i, int j) const { return extremes(physical(i, j)); }
+    // Count 0 and NaN heights for an empty cell.
+    const CellTally& tally(int cell) const
+    {
+        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
+        return s == kNoSlot ? kNoTally : pool_.tally(static_cast<int>(s));
+    }
+    const CellTally& tally(int i, int j) const { return tally(physical(i, j)); }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
     {
         pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w);
@@ -115,6 +123,7 @@ private:
     static constexpr uint32_t kNoSlot = 0xffffffffu;
     static const CellSums kEmptyCell;
     static const CellExtremes kNoExtremes;
+    static const CellTally kNoTally;
 
     uint32_t take_slot(int cell);
     // Empties slot s and lists it free. Does not touch the index of the cell it belonged to.

@@ -1,4 +1,5 @@
-// Configuration of the terrain map (DESIGN.md section 7; report sections 3 and 6).
+// Configuration of the terrain map (docs/ARCHITECTURE.md, "The terrain map"; report
+// sections 3 and 6).
 #pragma once
 
 #include <cmath>

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "ugv/terrain/cell_tally.hpp"
 #include "ugv/terrain/egocentric_grid.hpp"
 #include "ugv/terrain/map_config.hpp"
 #include "ugv/terrain/pose_history.hpp"
@@ -72,7 +73,8 @@ struct MapCounters
 };
 
 // What the map says, in unwrapped order (i along the map's +X, j along +Y), ready to publish.
-struct MapSnapshot
+// The tally layers (count, max and min height: cell_tally.hpp) come from the base.
+struct MapSnapshot : TallyLayers
 {
     Pose pose;                    // the pose the map is referenced to
     double resolution_m = 0.0;
@@ -86,9 +88,6 @@ struct MapSnapshot
     StatisticsKind statistics = StatisticsKind::variance_weighted;
     std::vector<float> mean_z_m;  // NaN = unknown
     std::vector<float> variance_z_m2;
-    std::vector<int32_t> count;
-    std::vector<float> max_z_m;   // highest sample of the cell; NaN = unknown
-    std::vector<float> min_z_m;   // lowest sample of the cell; NaN = unknown
 };
 
 // Sums over every cell, ENU heights (for tests of conservation).

@@ -1,5 +1,6 @@
-// The comparison mode (DESIGN §7): a square grid on the ENU axes, stored as a 2-D ring
-// buffer (as grid_map does), that follows the vehicle by whole cells and never rotates.
+// The comparison mode (docs/ARCHITECTURE.md, "The world-aligned mode"): a square grid on
+// the ENU axes, stored as a 2-D ring buffer (as grid_map does), that follows the vehicle by
+// whole cells and never rotates.
 // Its local frame has its origin at the south-west corner of the window, so the hot loop
 // works in small float coordinates.
 #pragma once
@@ -55,6 +56,7 @@ public:
     const CellSums& at(int cell) const { return cells_.sums(cell); }
     uint32_t count(int cell) const { return cells_.count(cell); }
     const CellExtremes& extremes(int cell) const { return cells_.extremes(cell); }
+    const CellTally& tally(int cell) const { return cells_.tally(cell); }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
     CellArray& cells() { return cells_; }
     // Where in cells() the cell's sums and count are (the same index: see EgocentricGrid).
