@@ -18,6 +18,7 @@
 #include "ugv/io/pty.hpp"
 #include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
+#include "ugv/sim/parse_command_line.hpp"
 
 namespace {
 
@@ -78,7 +79,7 @@ int gps_main(int argc, char** argv)
     app.add_option("--unplug-at", unplug_at_s, "remove the port at S seconds after start ...");
     app.add_option("--unplug-for", unplug_for_s, "... and plug it back after S seconds");
     app.add_option("--duration", duration_s, "exit after S seconds (0 = until SIGTERM)");
-    CLI11_PARSE(app, argc, argv);
+    if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     cfg.protocol = protocol == "nmea" ? Protocol::nmea : Protocol::novatel;
     try {
         cfg.script = ugv::sim::gps::parse_script(script);

@@ -22,6 +22,7 @@
 #include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
 #include "ugv/sim/line_faults.hpp"
+#include "ugv/sim/parse_command_line.hpp"
 
 namespace {
 
@@ -96,11 +97,7 @@ int imu_main(int argc, char** argv)
     app.add_option("--truncate-replies", faults.truncate_replies,
                    "cut the first N replies to commands short (the host's handshake must retry)");
     app.add_option("--duration", duration_s, "exit after S seconds (0 = run until SIGTERM)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    }
+    if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     const auto timing_words = parse_words(timing);
     if (timing_words.size() != 4) {
         std::fprintf(stderr, "%s: --timing needs 4 words\n", argv[0]);

@@ -21,6 +21,7 @@
 #include "ugv/io/pty.hpp"
 #include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
+#include "ugv/sim/parse_command_line.hpp"
 
 namespace {
 
@@ -130,11 +131,7 @@ int lms_main(int argc, char** argv)
                    "garbage[:P] | bitflip[:P] | ber[:P] | truncate[:P] | silence[:EVERY[:FOR]] | disappear[:AFTER[:GONE]] "
                    "(repeatable)");
     app.add_flag("-v,--verbose", verbose, "log the host's line rate changes");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : 2;
-    }
+    if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     FaultPlan plan;
     try {
         for (const std::string& f : faults) add_fault(f, plan);

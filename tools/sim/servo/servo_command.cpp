@@ -31,6 +31,7 @@
 #include "ugv/io/slcan_codec.hpp"
 #include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
+#include "ugv/sim/parse_command_line.hpp"
 
 namespace {
 
@@ -101,11 +102,7 @@ int servo_main(int argc, char** argv)
     app.footer("Signals: SIGUSR1 raises a fault (EMCY 0x8611 following error). SIGUSR2 drops the node off the bus\n"
                "for --loss-duration s. SIGHUP puts the adapter's controller bus-off (BEL; silent until the host\n"
                "closes and reopens). SIGINT/SIGTERM stop.");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : 2;
-    }
+    if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     const auto bus_bitrate_command = ugv::io::slcan::encode_bitrate(bus_bitrate);
     if (pty_path.empty()) {
         std::fprintf(stderr, "%s: --pty: an empty path\n", argv[0]);

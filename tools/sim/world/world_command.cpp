@@ -34,6 +34,7 @@
 #include "ugv/runtime/config.hpp"
 #include "ugv/runtime/stop_signals.hpp"
 #include "ugv/sim/command.hpp"
+#include "ugv/sim/parse_command_line.hpp"
 #include "ugv/sim_truth_t.hpp"
 
 namespace {
@@ -141,11 +142,7 @@ int world_main(int argc, char** argv)
         ->check(CLI::Range(0.0, 1e6));
     app.add_option("--seed", seed, "noise seed");
     app.add_flag("--print-scenario", print, "print the default scenario and exit");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : 2;
-    }
+    if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     if (print) {
         std::fputs(ugv::simworld::default_scenario_toml(), stdout);
         return 0;
