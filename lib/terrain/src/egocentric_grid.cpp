@@ -10,7 +10,6 @@
 namespace ugv::terrain {
 
 const CellSums EgocentricGrid::kEmptyCell{};
-const CellExtremes EgocentricGrid::kNoExtremes{};
 const CellTally EgocentricGrid::kNoTally{};
 
 namespace {

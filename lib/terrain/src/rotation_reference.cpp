@@ -20,8 +20,7 @@ struct Landed
     double wx2 = 0.0, wy2 = 0.0;  // sum w x^2, sum w y^2, likewise
     float z_ref_m = 0.0f;         // the first cell's reference height; the z sums about it
     double wz = 0.0, wz2 = 0.0;
-    uint32_t n = 0;
-    CellExtremes extremes;
+    CellTally tally;  // count and extremes: merged as a rotation merges them
 };
 
 }  // namespace
@@ -66,7 +65,7 @@ int EgocentricGrid::transform_reference(double angle_rad, double pivot_x_m, doub
                 l.any = true;
                 l.z_ref_m = a.z_ref_m;
             }
-            // Cells landing together pool their sums, counts and extremes.
+            // Cells landing together pool their sums and tallies.
             l.w += w;
             l.wx += w * x_rel;
             l.wy += w * y_rel;
@@ -76,8 +75,7 @@ int EgocentricGrid::transform_reference(double angle_rad, double pivot_x_m, doub
             z_sums_about(a, l.z_ref_m, wz, wz2);
             l.wz += wz;
             l.wz2 += wz2;
-            l.n += pool_.count(static_cast<int>(slot));
-            l.extremes.merge(pool_.extremes(static_cast<int>(slot)));
+            l.tally.merge(pool_.tally(static_cast<int>(slot)));
             if (near_edge) {
                 const auto close = [](double f) { return std::abs(f - std::round(f)) < 5e-3; };
                 if (close(fi) || close(fj)) (*near_edge)[static_cast<std::size_t>(to)] = 1;
@@ -104,8 +102,7 @@ int EgocentricGrid::transform_reference(double angle_rad, double pivot_x_m, doub
             sums.x_wx2 = static_cast<float>(l.wx2);
             sums.y_wy2 = static_cast<float>(l.wy2);
             sums.z_wz2 = static_cast<float>(l.wz2);
-            pool_.count(slot) = l.n;
-            pool_.extremes(slot) = l.extremes;
+            pool_.tally(slot) = l.tally;
         }
     }
     return dropped;

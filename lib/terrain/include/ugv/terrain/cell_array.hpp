@@ -23,11 +23,9 @@ public:
     std::size_t size() const { return sums_.size(); }
     CellSums& sums(int cell) { return sums_[static_cast<std::size_t>(cell)]; }
     const CellSums& sums(int cell) const { return sums_[static_cast<std::size_t>(cell)]; }
-    uint32_t count(int cell) const { return tallies_[static_cast<std::size_t>(cell)].count; }
-    uint32_t& count(int cell) { return tallies_[static_cast<std::size_t>(cell)].count; }
-    const CellExtremes& extremes(int cell) const { return tallies_[static_cast<std::size_t>(cell)].extremes; }
     const CellTally& tally(int cell) const { return tallies_[static_cast<std::size_t>(cell)]; }
-    CellExtremes& extremes(int cell) { return tallies_[static_cast<std::size_t>(cell)].extremes; }
+    CellTally& tally(int cell) { return tallies_[static_cast<std::size_t>(cell)]; }
+    uint32_t count(int cell) const { return tally(cell).count; }
     CellSums* sums_data() { return sums_.data(); }
     CellTally* tallies_data() { return tallies_.data(); }
 

@@ -57,19 +57,6 @@ public:
         return s == kNoSlot ? kEmptyCell : pool_.sums(static_cast<int>(s));
     }
     const CellSums& at(int i, int j) const { return at(physical(i, j)); }
-    uint32_t count(int cell) const
-    {
-        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
-        return s == kNoSlot ? 0u : pool_.count(static_cast<int>(s));
-    }
-    uint32_t count(int i, int j) const { return count(physical(i, j)); }
-    // NaN for an empty cell.
-    const CellExtremes& extremes(int cell) const
-    {
-        const uint32_t s = slot_[static_cast<std::size_t>(cell)];
-        return s == kNoSlot ? kNoExtremes : pool_.extremes(static_cast<int>(s));
-    }
-    const CellExtremes& extremes(int i, int j) const { return extremes(physical(i, j)); }
     // Count 0 and NaN heights for an empty cell.
     const CellTally& tally(int cell) const
     {
@@ -77,6 +64,10 @@ public:
         return s == kNoSlot ? kNoTally : pool_.tally(static_cast<int>(s));
     }
     const CellTally& tally(int i, int j) const { return tally(physical(i, j)); }
+    uint32_t count(int cell) const { return tally(cell).count; }
+    uint32_t count(int i, int j) const { return tally(i, j).count; }
+    const CellExtremes& extremes(int cell) const { return tally(cell).extremes; }
+    const CellExtremes& extremes(int i, int j) const { return tally(i, j).extremes; }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
     {
         pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w);
@@ -122,7 +113,6 @@ public:
 private:
     static constexpr uint32_t kNoSlot = 0xffffffffu;
     static const CellSums kEmptyCell;
-    static const CellExtremes kNoExtremes;
     static const CellTally kNoTally;
 
     uint32_t take_slot(int cell);

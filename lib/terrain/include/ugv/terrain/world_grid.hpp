@@ -54,9 +54,8 @@ public:
         return (r - n_ * (r >= n_)) * n_ + (c - n_ * (c >= n_));
     }
     const CellSums& at(int cell) const { return cells_.sums(cell); }
-    uint32_t count(int cell) const { return cells_.count(cell); }
-    const CellExtremes& extremes(int cell) const { return cells_.extremes(cell); }
     const CellTally& tally(int cell) const { return cells_.tally(cell); }
+    uint32_t count(int cell) const { return cells_.count(cell); }
     void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
     CellArray& cells() { return cells_; }
     // Where in cells() the cell's sums and count are (the same index: see EgocentricGrid).
