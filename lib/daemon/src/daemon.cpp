@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <exception>
 #include <string_view>
+#include <cmath>
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -123,6 +125,7 @@ Daemon::Daemon(Options options, int argc, char** argv) : options_(std::move(opti
         }
         status_channel_ = config_->get_string("status_channel", def_status);
         bus_batch_us_ = config_->get_int("bus_batch_ms", options_.bus_batch_ms, 0, 100) * 1000;
+        startup_timeout_us_ = std::llround(config_->get_double("startup_timeout_s", 30.0, 1.0, 3600.0) * 1e6);
     } catch (const runtime::ConfigError& e) {
         exit_config_error(e.what());
     }
@@ -168,23 +171,70 @@ void Daemon::start()
 
 void Daemon::set_state(State state, const std::string& error)
 {
-    const State old = state_.exchange(state);
-    if (!error.empty()) {
-        std::lock_guard<std::mutex> lock(error_mutex_);
-        last_error_ = error;
-    }
-    if (old != state) spdlog::info("state {} -> {}{}{}", state_name(old), state_name(state), error.empty() ? "" : ": ", error);
+    std::lock_guard<std::mutex> lock(error_mutex_);
+    requested_.store(state);
+    if (!error.empty()) reason_ = error;
+    // These need no output to be true: reported at once. RUNNING waits for the output
+    // (update_state), so a session that says "streaming" while nothing comes out is not.
+    if (state == State::degraded || state == State::fault || state == State::stopping) report(state, reason_);
 }
 
-void Daemon::mark_alive() { last_alive_us_.store(io::monotonic_us()); }
+void Daemon::report(State s, const std::string& why)
+{
+    const State old = state_.exchange(s);
+    if (!why.empty()) last_error_ = why;
+    if (old != s) spdlog::info("state {} -> {}{}{}", state_name(old), state_name(s), why.empty() ? "" : ": ", why);
+}
+
+void Daemon::declare_output(std::string what, int64_t stall_us)
+{
+    output_ = std::move(what);
+    health_timeout_us_ = stall_us;
+}
+
+void Daemon::mark_output() { prev_alive_us_.store(last_alive_us_.exchange(io::monotonic_us())); }
+
+void Daemon::update_state()
+{
+    std::lock_guard<std::mutex> lock(error_mutex_);
+    const State cur = state_.load();
+    const State want = requested_.load();
+    // STOPPING is final; DEGRADED and FAULT were reported by set_state with their reason.
+    if (cur == State::stopping || want == State::degraded || want == State::fault || want == State::stopping) return;
+    const int64_t now = io::monotonic_us();
+    const int64_t last = last_alive_us_.load();
+    const int64_t prev = prev_alive_us_.load();
+    const bool fresh = last != 0 && now - last <= health_timeout_us_;
+    // Hysteresis: RUNNING is entered on two marks within the stall time and left only when
+    // none came for the stall time, so a trickle among garbage does not flap the state.
+    const bool flowing = fresh && prev != 0 && last - prev <= health_timeout_us_;
+    if (cur == State::running ? fresh : flowing) {
+        if (cur != State::running) reason_.clear();  // whatever it was no longer holds
+        report(State::running, "");
+        return;
+    }
+    const std::string stall = fmt::format("{:.1f} s", static_cast<double>(health_timeout_us_) * 1e-6);
+    if (cur == State::running) {
+        report(State::degraded, "no " + output_ + " for " + stall + (reason_.empty() ? "" : " (" + reason_ + ")"));
+        return;
+    }
+    if (cur == State::starting && now - start_us_ >= startup_timeout_us_) {
+        report(State::degraded, fmt::format("no {} within startup_timeout_s = {:g} s of start{}{}", output_,
+                                            static_cast<double>(startup_timeout_us_) * 1e-6, reason_.empty() ? "" : ": ",
+                                            reason_));
+        // Up and saying what is wrong: systemd's start timeout would only restart it, and the
+        // watchdog now watches the main loop.
+        if (!ready_sent_.exchange(true)) notifier_.ready();
+    }
+}
 
 void Daemon::ready()
 {
-    if (state_.load() == State::starting || state_.load() == State::degraded) set_state(State::running);
-    if (!ready_sent_) {
-        notifier_.ready();
-        ready_sent_ = true;
+    {
+        std::lock_guard<std::mutex> lock(error_mutex_);
+        if (requested_.load() != State::stopping) requested_.store(State::running);
     }
+    if (!ready_sent_.exchange(true)) notifier_.ready();
 }
 
 void Daemon::notify_status(const std::string& line)
@@ -214,6 +264,7 @@ void Daemon::request_stop()
 
 void Daemon::publish_status()
 {
+    update_state();
     std::string err;
     {
         std::lock_guard<std::mutex> lock(error_mutex_);
@@ -238,9 +289,17 @@ void Daemon::on_watchdog()
     // outage); a restart would only lose its state and, repeated, trip the start limit. What
     // the watchdog is for -- a hung main loop, or a session stuck while the state still says
     // RUNNING -- stops the pings.
+    // A DEGRADED the daemon did not explain (its output stopped while it thought all was well)
+    // is a device daemon's session stuck: no ping. A processing daemon's output stops with its
+    // inputs, which a restart would not bring back.
     const State s = state_.load();
     const bool fresh = io::monotonic_us() - last_alive_us_.load() <= health_timeout_us_;
-    if ((s == State::running && fresh) || s == State::degraded) notifier_.watchdog();
+    bool explained = options_.processing;
+    {
+        std::lock_guard<std::mutex> lock(error_mutex_);
+        explained = explained || requested_.load() == State::degraded || !reason_.empty();
+    }
+    if ((s == State::running && fresh) || (s == State::degraded && explained)) notifier_.watchdog();
 }
 
 namespace {
@@ -261,6 +320,7 @@ int Daemon::run()
         return 0;
     }
     add_timer(1'000'000, [this] { publish_status(); });
+    add_timer(250'000, [this] { update_state(); });
     const int64_t wd = notifier_.watchdog_interval_us();
     if (wd > 0) add_timer(wd, [this] { on_watchdog(); });
     // Batched: a timer drains the bus instead of a wake-up per datagram (Options::bus_batch_ms).

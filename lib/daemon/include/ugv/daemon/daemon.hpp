@@ -7,11 +7,15 @@
 //   - spdlog to stderr; SIGINT/SIGTERM -> STOPPING=1 and a clean return from run();
 //   - sd_notify READY=1, STATUS=, WATCHDOG=1 while RUNNING with data within the timeout, or
 //     while DEGRADED (recovering); a hung loop or a silent stall stops the pings;
-//   - the 1 Hz daemon_status_t on STATUS_<NAME> with the named counters.
+//   - the 1 Hz daemon_status_t on STATUS_<NAME> with the named counters;
+//   - the state that STATUS reports (docs/runtime.md, "What the state means"): the daemon
+//     declares its output and marks it each time it publishes it (mark_output); RUNNING is
+//     reported only while that output flows, DEGRADED with a reason when it stops or when
+//     the daemon says so (set_state), and STARTING only until startup_timeout_s.
 //
 // Threads: run() is the main thread: it polls the bus fd, the fds added with add_fd(), the
 // timers and the signal pipe. A daemon may run its device session on a thread of its own;
-// from there it may call publish through out(), counters(), set_state(), mark_alive() and
+// from there it may call publish through out(), counters(), set_state(), mark_output() and
 // stop_requested(), which are thread-safe. Everything else belongs to the main thread.
 //
 //   int main(int argc, char** argv) {
@@ -78,12 +82,24 @@ public:
     const std::string& name() const { return options_.name; }
 
     runtime::Counters& counters() { return counters_; }
+
+    // The daemon's own view of its state, and the reason. DEGRADED and FAULT are reported at
+    // once; RUNNING (and STARTING) only as the output allows: RUNNING while it flows, else
+    // STARTING until the start-up deadline, else DEGRADED ("no <output> for N s", with the
+    // last reason given). The reason is kept until another non-empty one replaces it.
     void set_state(State state, const std::string& error = "");
+    // The state reported now (what STATUS carries).
     State state() const { return state_.load(); }
-    // Data arrived: the daemon is healthy for health_timeout_us from now (watchdog pings).
-    void mark_alive();
+    // What flows means for this daemon (a channel name, "maps updated by new points") and
+    // how long it may pause before the daemon is not RUNNING (also the watchdog's health
+    // timeout). Call before run().
+    void declare_output(std::string what, int64_t stall_us);
+    // The output was published: it flows when two marks came within stall_us of each other,
+    // the last within stall_us of now (so one stray message among garbage is not RUNNING).
+    void mark_output();
+    void mark_alive() { mark_output(); }  // the older name
     void set_health_timeout_us(int64_t us) { health_timeout_us_ = us; }
-    // READY=1 (once) and state RUNNING. Health (watchdog pings) still needs mark_alive().
+    // READY=1 (once) and the daemon's view RUNNING; the state is RUNNING once output flows.
     void ready();
     // A one-line STATUS= for systemd (also logged at debug level).
     void notify_status(const std::string& line);
@@ -103,6 +119,9 @@ private:
     struct Timer;
     void publish_status();
     void on_watchdog();
+    // Derives the reported state from the daemon's view and the output's marks (main thread).
+    void update_state();
+    void report(State s, const std::string& why);
 
     Options options_;
     std::unique_ptr<runtime::Config> config_;
@@ -114,17 +133,22 @@ private:
     bool replaying_ = false;
     runtime::Counters counters_;
     runtime::Notifier notifier_;
-    std::atomic<State> state_{State::starting};
+    std::atomic<State> state_{State::starting};      // reported
+    std::atomic<State> requested_{State::starting};  // the daemon's own view (set_state)
     std::atomic<bool> stop_flag_{false};
     std::mutex error_mutex_;
-    std::string last_error_;
+    std::string last_error_;   // what STATUS carries
+    std::string reason_;       // the daemon's last reason (set_state)
+    std::string output_ = "output";
     std::atomic<int64_t> last_alive_us_{0};
+    std::atomic<int64_t> prev_alive_us_{0};
     int64_t health_timeout_us_ = 2'000'000;
+    int64_t startup_timeout_us_ = 30'000'000;
     int64_t bus_batch_us_ = 0;
     int64_t start_us_ = 0;
     int64_t status_seq_ = 0;
     std::string status_channel_;
-    bool ready_sent_ = false;
+    std::atomic<bool> ready_sent_{false};
     std::vector<std::pair<int, std::function<void()>>> fds_;
     std::vector<std::unique_ptr<Timer>> timers_;
 };
