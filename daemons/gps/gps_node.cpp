@@ -48,7 +48,8 @@ GpsNode::GpsNode(daemon::Daemon& daemon, GpsConfig config)
     // Every counter is listed from the first status message on.
     for (const char* name : kNodeCounterNames) daemon_.counters()[name];
     update_counters(nullptr);
-    daemon_.set_health_timeout_us(config_.silence_timeout_us);
+    // Flowing: fixes published, none missing for longer than the receiver's silence timeout.
+    daemon_.declare_output("fixes on " + config_.channel_fix, config_.silence_timeout_us);
 }
 
 bool GpsNode::wanted(novatel::FrameKind kind) const
@@ -71,10 +72,10 @@ void GpsNode::on_message(const novatel::Decoded& m)
     const auto out = interpreter_.on_message(m.message, m.kind, m.arrival_utime, m.frame_bytes);
     auto& counters = daemon_.counters();
     if (out.fix) {
-        bus::publish(daemon_.out(), config_.channel_fix, to_message(*out.fix, fix_seq_++));
+        const bool sent = bus::publish(daemon_.out(), config_.channel_fix, to_message(*out.fix, fix_seq_++));
         ++counters["fixes_published"];
         ++fixes_;
-        daemon_.mark_alive();
+        if (sent) daemon_.mark_output();
         data_flowing_ = true;
     }
     if (out.velocity) {

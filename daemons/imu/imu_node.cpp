@@ -29,7 +29,8 @@ ImuNode::ImuNode(daemon::Daemon& daemon, const ImuConfig& config)
     runtime::set_all(d_.counters(), gx1::ParserCounters{});
     runtime::set_all(d_.counters(), gx1::SessionCounters{});
     d_.counters()["reconnects"];
-    d_.set_health_timeout_us(int64_t{config_.session.silence_timeout_ms} * 1000);
+    // Flowing: samples published, none missing for longer than the session's silence timeout.
+    d_.declare_output("samples on " + config_.channel, int64_t{config_.session.silence_timeout_ms} * 1000);
 }
 
 void ImuNode::sleep_us(int64_t us) const
@@ -72,11 +73,12 @@ void ImuNode::run()
         rlog.log(spdlog::level::warn, why, why, io::monotonic_us());
     };
     auto on_sample = [&](const gx1::Sample& s) {
-        if (bus::publish(d_.out(), config_.channel, to_message(s, seq_++, sigma)))
+        if (bus::publish(d_.out(), config_.channel, to_message(s, seq_++, sigma))) {
             ++published_;
-        else
+            d_.mark_output();
+        } else {
             ++publish_failures_;
-        d_.mark_alive();
+        }
     };
 
     while (!d_.stop_requested()) {

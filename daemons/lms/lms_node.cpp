@@ -20,8 +20,9 @@ LmsNode::LmsNode(daemon::Daemon& d, const LmsConfig& config)
                lms::SessionCallbacks{
                    .on_scan =
                        [this](const lms::StampedScan& s) {
-                           d_.mark_alive();
-                           if (publish(config_.channel, to_message(s, config_.sensor_id, scan_seq_++))) ++published_;
+                           if (!publish(config_.channel, to_message(s, config_.sensor_id, scan_seq_++))) return;
+                           ++published_;
+                           d_.mark_output();
                        },
                    .on_state = [this](lms::SessionState s, const std::string& why) { on_state(s, why); },
                    .on_bytes = config.publish_raw
@@ -34,8 +35,8 @@ LmsNode::LmsNode(daemon::Daemon& d, const LmsConfig& config)
                    .sleep_us = nullptr,
                })
 {
-    // Healthy while scans arrive well within the time after which the session gives up.
-    d_.set_health_timeout_us(static_cast<int64_t>(2 * session_.silence_timeout_s() * 1e6));
+    // Flowing: scans published, well within the time after which the session gives up.
+    d_.declare_output("scans on " + config_.channel, static_cast<int64_t>(2 * session_.silence_timeout_s() * 1e6));
 }
 
 LmsNode::~LmsNode() { join(); }
@@ -79,11 +80,13 @@ void LmsNode::on_state(lms::SessionState s, const std::string& why)
     switch (s) {
     case lms::SessionState::streaming:
         spdlog::info("streaming: {}", why);
-        d_.set_state(daemon::State::running);
+        ever_streamed_ = true;
+        d_.set_state(daemon::State::running);  // RUNNING once scans are published
         break;
     case lms::SessionState::recovering:
         if (!why.empty()) log_.log(spdlog::level::warn, "recover", why, io::monotonic_us());
-        if (d_.state() != daemon::State::starting) d_.set_state(daemon::State::degraded, why);
+        // Before the first stream the reason waits for the start-up deadline.
+        d_.set_state(ever_streamed_ ? daemon::State::degraded : daemon::State::starting, why);
         break;
     case lms::SessionState::probing:
     case lms::SessionState::configuring:

@@ -46,6 +46,7 @@ private:
     sick_lms2xx::Session session_;
     runtime::RateLimitedLog log_;
     std::atomic<bool> streaming_{false};
+    bool ever_streamed_ = false;  // session thread only
     int64_t scan_seq_ = 0, raw_seq_ = 0;
     std::thread thread_;
 };

@@ -88,10 +88,14 @@ void NodscanNode::assemble(const laser_scan_t& scan)
 
 int run(daemon::Daemon& d, const NodscanConfig& config)
 {
-    NodscanNode node(config, [&d, &config](const point_cloud_t& msg) {
-        bus::publish(d.out(), config.channel, msg);
-        d.mark_alive();
-        d.ready();
+    // Flowing: POINTS published (one cloud per scan that had servo angles).
+    d.declare_output(config.channel, 2'000'000);
+    bool first = true;
+    NodscanNode node(config, [&d, &config, &first](const point_cloud_t& msg) {
+        if (!bus::publish(d.out(), config.channel, msg)) return;
+        d.mark_output();
+        if (first) d.ready();
+        first = false;
     });
     const auto sync_counters = [&] { runtime::set_all(d.counters(), node.counters()); };
     sync_counters();  // every counter is listed from the first status message on

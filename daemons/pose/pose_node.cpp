@@ -22,6 +22,8 @@ const char* degraded_reason(const estimation::PoseEstimate& p)
 
 int run(daemon::Daemon& d, const PoseConfig& cfg)
 {
+    // Flowing: POSE published (on message time, so it stops when the inputs stop).
+    d.declare_output(cfg.channel, 2'000'000);
     estimation::PoseEstimator estimator(cfg.estimator);
     runtime::set_all(d.counters(), estimator.counters());  // listed from the first status message on
 
@@ -44,7 +46,7 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
                 d.set_state(*why ? daemon::State::degraded : daemon::State::running, why);
                 d.notify_status(*why ? std::string("DEGRADED: ") + why : std::string("OK"));
             }
-            d.mark_alive();
+            d.mark_output();
         }
         runtime::set_all(d.counters(), estimator.counters());
     };

@@ -37,7 +37,8 @@ void ServoNode::start()
     bus::subscribe<servo_command_t>(d_.bus(), config_.command_channel,
                                     [this](const std::string&, const servo_command_t& m, int64_t) { on_command(m); });
     d_.add_timer(config_.control_period_us, [this] { control_tick(); });
-    d_.set_health_timeout_us(500'000);
+    // Flowing: SERVO_STATE while the drive is enabled and the nod profile runs.
+    d_.declare_output("SERVO_STATE with the drive enabled and nodding", 500'000);
     open_transport();
 }
 
@@ -209,7 +210,7 @@ void ServoNode::publish_samples()
     for (const auto& s : drive_.take_samples()) {
         bus::publish(d_.out(), config_.channel, to_message(s, nod_.kind(), drive_.last_emcy_code(), seq_++));
         ++counters_.samples;
-        if (drive_.operational()) d_.mark_alive();
+        if (drive_.operational() && nod_.started()) d_.mark_output();
     }
 }
 
