@@ -128,6 +128,7 @@ PoseHistory::AddResult TerrainMapper::add_pose(const Pose& pose)
         ++counters_.poses_rejected_out_of_order;
         return result;
     }
+    if (pending_restore_) decide_restore(history_.newest());
     if (ego_) {
         move_egocentric(history_.newest());
     } else {
@@ -189,6 +190,69 @@ void TerrainMapper::move_egocentric(const Pose& pose)
         anchor_m_ += columns * g * ey;
         ++counters_.recentres;
     }
+}
+
+void TerrainMapper::restore_at_first_pose(MapState state)
+{
+    if (!history_.empty()) {  // too late: the map is already somewhere
+        restore_outcome_ = RestoreOutcome::mismatch;
+        return;
+    }
+    pending_restore_ = std::make_unique<MapState>(std::move(state));
+    restore_outcome_ = RestoreOutcome::pending;
+}
+
+void TerrainMapper::decide_restore(const Pose& first)
+{
+    const std::unique_ptr<MapState> s = std::move(pending_restore_);
+    if (!ego_ || s->nx != config_.nx() || s->ny != config_.ny() || s->grid_size_m != config_.grid_size_m ||
+        s->statistics != config_.statistics || s->reference_x_m != config_.reference_x_m ||
+        s->reference_y_m != config_.reference_y_m) {
+        restore_outcome_ = RestoreOutcome::mismatch;
+        return;
+    }
+    const Eigen::Vector2d anchor(s->anchor_x_m, s->anchor_y_m);
+    restore_distance_m_ = (rotation_2d(-s->anchor_yaw_rad) * (reference_world(first) - anchor)).norm();
+    if (!(restore_distance_m_ <= std::max(config_.extent_x_m, config_.extent_y_m))) {
+        restore_outcome_ = RestoreOutcome::moved;
+        return;
+    }
+    ego_->clear();  // unwrapped index = physical index while m_i = 0
+    for (const SavedCell& c : s->cells) {
+        const auto slot = static_cast<int>(ego_->storage_of(static_cast<int>(c.index)));
+        ego_->cells().sums(slot) = c.sums;
+        ego_->cells().tally(slot) = c.tally;
+    }
+    anchored_ = true;
+    anchor_m_ = anchor;
+    anchor_yaw_rad_ = s->anchor_yaw_rad;
+    counters_.cells_restored += s->cells.size();
+    restore_outcome_ = RestoreOutcome::restored;
+}
+
+bool TerrainMapper::save_state(MapState& out) const
+{
+    if (!ego_ || !anchored_ || pending_restore_) return false;
+    const int nx = config_.nx(), ny = config_.ny();
+    out.nx = nx;
+    out.ny = ny;
+    out.grid_size_m = config_.grid_size_m;
+    out.statistics = config_.statistics;
+    out.reference_x_m = config_.reference_x_m;
+    out.reference_y_m = config_.reference_y_m;
+    out.anchor_x_m = anchor_m_.x();
+    out.anchor_y_m = anchor_m_.y();
+    out.anchor_yaw_rad = anchor_yaw_rad_;
+    out.utime_us = history_.empty() ? 0 : history_.newest().utime_us;
+    out.cells.clear();
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) {
+            const CellSums& c = ego_->at(i, j);
+            const CellTally& t = ego_->tally(i, j);
+            if (c.empty() || t.count == 0) continue;
+            out.cells.push_back({static_cast<uint32_t>(i * ny + j), c, t});
+        }
+    return true;
 }
 
 void TerrainMapper::move_world(const Pose& pose)

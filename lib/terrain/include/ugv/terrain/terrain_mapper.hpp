@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "ugv/terrain/cell_tally.hpp"
 #include "ugv/terrain/egocentric_grid.hpp"
 #include "ugv/terrain/map_config.hpp"
+#include "ugv/terrain/map_state.hpp"
 #include "ugv/terrain/pose_history.hpp"
 #include "ugv/terrain/world_grid.hpp"
 
@@ -51,6 +53,7 @@ struct MapCounters
     uint64_t recentres = 0;                  // lateral re-centring by whole columns (egocentric)
     uint64_t resets = 0;                     // map cleared after a pose jump larger than the map
     uint64_t cells_dropped = 0;              // cells rotated out of the map
+    uint64_t cells_restored = 0;             // known cells taken from a saved map at the first pose
 
     template <class F>
     void visit(F&& f) const
@@ -69,6 +72,7 @@ struct MapCounters
         f("recentres", recentres);
         f("resets", resets);
         f("cells_dropped", cells_dropped);
+        f("cells_restored", cells_restored);
     }
 };
 
@@ -88,6 +92,15 @@ struct MapSnapshot : TallyLayers
     StatisticsKind statistics = StatisticsKind::variance_weighted;
     std::vector<float> mean_z_m;  // NaN = unknown
     std::vector<float> variance_z_m2;
+};
+
+// What became of a saved map given to restore_at_first_pose().
+enum class RestoreOutcome : int8_t {
+    none,      // none was given
+    pending,   // waiting for the first pose
+    restored,  // the map holds its cells again, moved by the first pose as by any pose
+    moved,     // the first pose was further than the map's extent from it: dropped
+    mismatch,  // another layout, statistics, reference point or mode: dropped
 };
 
 // Sums over every cell, ENU heights (for tests of conservation).
@@ -127,7 +140,19 @@ public:
 
     void clear();
 
+    // The map's content and where it lies (egocentric mode, once a pose has placed it and
+    // any restore was decided); false otherwise, and out is left as it was.
+    bool save_state(MapState& out) const;
+    // A saved map, decided at the first pose: restored when that pose's reference point is
+    // within the map's extent of the saved map's (max of extent_x, extent_y, the same bound
+    // as a pose jump's reset), else dropped.
+    void restore_at_first_pose(MapState state);
+    RestoreOutcome restore_outcome() const { return restore_outcome_; }
+    // How far the first pose was from the saved map (m; NaN before the decision).
+    double restore_distance_m() const { return restore_distance_m_; }
+
 private:
+    void decide_restore(const Pose& first);
     struct Frame;
     Frame local_frame() const;
     void move_egocentric(const Pose& pose);
@@ -149,6 +174,9 @@ private:
     Eigen::Vector2d anchor_m_{0, 0};  // egocentric: ENU of the local frame's origin
     double anchor_yaw_rad_ = 0.0;     // egocentric: ENU yaw of the local X axis
     std::unique_ptr<detail::PlacedPoints> placed_;  // allocated once: fuse() allocates nothing
+    std::unique_ptr<MapState> pending_restore_;
+    RestoreOutcome restore_outcome_ = RestoreOutcome::none;
+    double restore_distance_m_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace ugv::terrain
