@@ -1,6 +1,8 @@
 #include "terrain_config.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 namespace ugv::terrain_daemon {
@@ -14,6 +16,16 @@ TerrainConfig read_config(runtime::Config& cfg)
     c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
     c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 1.0, 0.0, 5.0) * 1e6));
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));
+    // Under systemd, StateDirectory= gives a writable folder (STATE_DIRECTORY, the first of a
+    // colon-separated list); elsewhere the map is kept only when a path is configured.
+    std::string default_map_file;
+    if (const char* dir = std::getenv("STATE_DIRECTORY"); dir && *dir) {
+        const std::string first(dir, std::strcspn(dir, ":"));
+        default_map_file = first + "/terrain_map.bin";
+    }
+    c.map_file = cfg.get_string("map_file", default_map_file);
+    c.map_save_period_us =
+        static_cast<int64_t>(std::llround(cfg.get_double("map_save_period_s", 10.0, 1.0, 3600.0) * 1e6));
 
     terrain::MapConfig& m = c.map;
     m.grid_size_m = cfg.get_double("grid_size_m", 0.2, 0.05, 2.0);

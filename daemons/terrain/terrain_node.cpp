@@ -1,5 +1,14 @@
 #include "terrain_node.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -10,6 +19,8 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/rate_limited_log.hpp"
+#include "ugv/terrain/map_state.hpp"
 #include "ugv/terrain/simd.hpp"
 
 namespace ugv::terrain_daemon {
@@ -161,6 +172,8 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
     // Catch up without a burst after a gap: the next slot after this message.
     next_publish_us_ = message_time_us + (period_us_ - (message_time_us - next_publish_us_) % period_us_);
     const int64_t start = now_us_();
+    map_updated_ = mapper_.counters().points_fused != fused_at_publish_;
+    fused_at_publish_ = mapper_.counters().points_fused;
     mapper_.snapshot(snapshot_);
     to_message(snapshot_, last_pose_, seq_++, message_);
     publish_(message_);
@@ -168,20 +181,135 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
     counters_.last_publish_us = now_us_() - start;
 }
 
+namespace {
+
+// The map file is written whole to FILE.tmp, synced, and renamed over FILE (then the folder
+// synced): a crash at any point leaves the old file or the new one, never a mix.
+bool write_atomically(const std::string& path, const std::vector<uint8_t>& bytes, std::string& why)
+{
+    const std::string tmp = path + ".tmp";
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        why = tmp + ": " + std::strerror(errno);
+        return false;
+    }
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        done += static_cast<std::size_t>(n);
+    }
+    const bool ok = done == bytes.size() && ::fsync(fd) == 0;
+    const int err = errno;
+    ::close(fd);
+    if (!ok || ::rename(tmp.c_str(), path.c_str()) != 0) {
+        why = path + ": " + std::strerror(ok ? errno : err);
+        ::unlink(tmp.c_str());
+        return false;
+    }
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    if (const int dfd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+    return true;
+}
+
+// The saved map at path, if any. A file that is not a regular file, or larger than a map of
+// this layout can be, is refused unread.
+std::optional<terrain::MapState> read_saved_map(const std::string& path, const terrain::MapConfig& map)
+{
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == ENOENT)
+            spdlog::info("map_file {}: none saved yet, starting with an empty map", path);
+        else
+            spdlog::warn("map_file {}: {}; starting with an empty map", path, std::strerror(errno));
+        return std::nullopt;
+    }
+    std::string why;
+    const std::size_t limit = terrain::max_encoded_size(map.nx(), map.ny());
+    if (!S_ISREG(st.st_mode)) {
+        why = "not a regular file";
+    } else if (static_cast<std::size_t>(st.st_size) > limit) {
+        why = std::to_string(st.st_size) + " bytes, more than a map of this layout (" + std::to_string(limit) + ")";
+    } else {
+        std::ifstream in(path, std::ios::binary);
+        std::vector<uint8_t> bytes(static_cast<std::size_t>(st.st_size));
+        in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        if (!in || in.gcount() != static_cast<std::streamsize>(bytes.size())) {
+            why = "read error";
+        } else if (auto state = terrain::decode_map_state(bytes.data(), bytes.size(), why)) {
+            spdlog::info("map_file {}: {} known cells saved, restored if the first pose is within the map's extent",
+                         path, state->cells.size());
+            return state;
+        }
+    }
+    spdlog::warn("map_file {}: refused ({}); starting with an empty map", path, why);
+    return std::nullopt;
+}
+
+}  // namespace
+
 int run(daemon::Daemon& d, const TerrainConfig& config)
 {
-    d.set_health_timeout_us(config.health_timeout_us);
+    // Flowing: maps whose content new points updated (a map republished as it was is not).
+    d.declare_output("maps updated by new points on " + config.map_channel, config.health_timeout_us);
+    TerrainNode* self = nullptr;
+    bool first = true;
     TerrainNode node(
         config,
-        [&d, &config](const terrain_map_t& msg) {
-            bus::publish(d.out(), config.map_channel, msg);
-            d.mark_alive();
-            d.ready();
+        [&d, &config, &self, &first](const terrain_map_t& msg) {
+            if (!bus::publish(d.out(), config.map_channel, msg)) return;
+            if (self && self->map_updated()) d.mark_output();
+            if (first) d.ready();
+            first = false;
         },
         [] { return io::monotonic_us(); });
+    self = &node;
+    const bool egocentric = config.map.mode == terrain::MapMode::egocentric;
+    if (!config.map_file.empty() && !egocentric) spdlog::warn("map_file: the world-aligned map is not kept across restarts");
+    const bool keep_map = !config.map_file.empty() && !d.replaying() && egocentric;
+    MapFileCounters file_counters;
+    if (keep_map) {
+        if (auto saved = read_saved_map(config.map_file, config.map)) node.restore_at_first_pose(std::move(*saved));
+    }
+    bool restore_logged = false;
     const auto sync_counters = [&] {
         runtime::set_all(d.counters(), node.mapper().counters());
         runtime::set_all(d.counters(), node.counters());
+        runtime::set_all(d.counters(), file_counters);
+        const auto outcome = node.mapper().restore_outcome();
+        if (restore_logged || outcome == terrain::RestoreOutcome::none || outcome == terrain::RestoreOutcome::pending)
+            return;
+        restore_logged = true;
+        const double moved_m = node.mapper().restore_distance_m();
+        if (outcome == terrain::RestoreOutcome::restored)
+            spdlog::info("map restored: {} known cells, the first pose {:.1f} m from where it was saved",
+                         node.mapper().counters().cells_restored, moved_m);
+        else if (outcome == terrain::RestoreOutcome::moved)
+            spdlog::info("saved map dropped: the first pose is {:.1f} m from it, beyond the map's extent", moved_m);
+        else
+            spdlog::warn("saved map dropped: another layout, statistics, reference point or mode");
+    };
+    // Saved only when something changed: a parked vehicle does not rewrite the file.
+    uint64_t saved_version = 0;
+    runtime::RateLimitedLog save_log;
+    const auto save_map = [&] {
+        const auto& c = node.mapper().counters();
+        const uint64_t version = c.points_fused + c.wraps + c.rotations + c.recentres + c.resets + c.cells_dropped + 1;
+        terrain::MapState state;
+        if (version == saved_version || !node.mapper().save_state(state)) return;
+        std::string why;
+        if (write_atomically(config.map_file, terrain::encode_map_state(state), why)) {
+            ++file_counters.map_saves;
+            saved_version = version;
+        } else {
+            ++file_counters.map_save_failures;
+            save_log.log(spdlog::level::warn, "save", "map_file: cannot save: " + why, io::monotonic_us());
+        }
+        sync_counters();
     };
     sync_counters();  // every counter is listed from the first status message on
     bus::subscribe<pose_t>(d.bus(), config.pose_channel, [&](const std::string&, const pose_t& m, int64_t) {
@@ -193,10 +321,12 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
                                       node.on_points(m);
                                       sync_counters();
                                   });
-    spdlog::info("mapping {} + {} -> {} at {} Hz of message time ({} vector code)", config.points_channel,
+    if (keep_map) d.add_timer(config.map_save_period_us, save_map);
+    spdlog::info("mapping {} + {} -> {} at {} Hz of message time ({} vector code){}", config.points_channel,
                  config.pose_channel, config.map_channel, config.publish_hz,
-                 terrain::to_string(terrain::simd_level()));
+                 terrain::to_string(terrain::simd_level()), keep_map ? ", map kept in " + config.map_file : "");
     const int rc = d.run();
+    if (keep_map) save_map();  // SIGTERM: the map as it stands
     sync_counters();
     const auto& c = d.counters();
     spdlog::info("{} points fused, {} maps published, {} wraps, {} rotations", c.get("points_fused"),

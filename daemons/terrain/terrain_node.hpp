@@ -48,6 +48,20 @@ struct NodeCounters
     }
 };
 
+// The map file (docs/terrain.md, "Restarts").
+struct MapFileCounters
+{
+    uint64_t map_saves = 0;
+    uint64_t map_save_failures = 0;
+
+    template <class F>
+    void visit(F&& f) const
+    {
+        f("map_saves", map_saves);
+        f("map_save_failures", map_save_failures);
+    }
+};
+
 class TerrainNode
 {
 public:
@@ -62,6 +76,11 @@ public:
 
     const terrain::TerrainMapper& mapper() const { return mapper_; }
     const NodeCounters& counters() const { return counters_; }
+    // A saved map, restored or dropped at the first pose (TerrainMapper::restore_at_first_pose).
+    void restore_at_first_pose(terrain::MapState state) { mapper_.restore_at_first_pose(std::move(state)); }
+    // Whether the last map published holds points fused since the one before: what makes
+    // the daemon's output flow (a map republished unchanged does not).
+    bool map_updated() const { return map_updated_; }
 
 private:
     void fuse(const point_cloud_t& msg);
@@ -84,6 +103,8 @@ private:
     int64_t period_us_;
     int64_t next_publish_us_ = 0;
     int64_t seq_ = 0;
+    uint64_t fused_at_publish_ = 0;
+    bool map_updated_ = false;
     terrain::MapSnapshot snapshot_;
     terrain_map_t message_;
 };
