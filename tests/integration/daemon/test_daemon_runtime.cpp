@@ -184,3 +184,27 @@ TEST_CASE("daemon: live input, taken as it arrives or batched (bus_batch_ms), lo
         CHECK(d.wait_exit(2.0) == 0);
     }
 }
+
+TEST_CASE("daemon: no output by startup_timeout_s -> DEGRADED naming the output; output -> RUNNING; stall -> DEGRADED")
+{
+    // Issue 23, "STATUS tells the truth": the mechanism every daemon uses (port 7749).
+    test::TempDir dir;
+    const std::string url = test::lcm_url(7749);
+    auto listen = bus::open_live(url);
+    std::vector<daemon_status_t> status;
+    bus::subscribe<daemon_status_t>(*listen, "STATUS_DAEMON", [&](const std::string&, const daemon_status_t& m, int64_t) {
+        status.push_back(m);
+    });
+    const auto state_is = [&](int8_t s) { return !status.empty() && status.back().state == s; };
+    test::write_file(dir / "d.toml", "healthy = false\nstartup_timeout_s = 1\n");
+    test::Process d({test::bin("ugv-test-daemon"), "--config", dir / "d.toml", "--lcm-url", url}, dir / "out",
+                    dir / "err");
+    INFO(d.err());
+    REQUIRE(test::wait_until([&] { listen->handle(20); return !status.empty(); }, 10));
+    CHECK(status.front().state == daemon_status_t::STATE_STARTING);
+    REQUIRE(test::wait_until([&] { listen->handle(20); return state_is(daemon_status_t::STATE_DEGRADED); }, 5));
+    CHECK(status.back().last_error == "no output within startup_timeout_s = 1 s of start");
+    for (const auto& s : status) CHECK(s.state != daemon_status_t::STATE_RUNNING);
+    d.signal(SIGTERM);
+    CHECK(d.wait_exit(2.0) == 0);
+}

@@ -355,3 +355,49 @@ TEST_CASE("live: synthetic GPS + IMU on LCM give POSE at 10 Hz and STATUS_POSE c
     CHECK(imu_used > 100);
     fs::remove_all(dir);
 }
+
+TEST_CASE("live: STATUS_POSE is RUNNING while POSE flows, DEGRADED when the inputs stop, RUNNING when they resume")
+{
+    // Issue 23, "STATUS tells the truth": port 7743.
+    const char* url = "udpm://239.255.76.67:7743?ttl=0";
+    lcm::LCM lcm(url);
+    REQUIRE(lcm.good());
+    LiveCapture cap;
+    lcm.subscribe("POSE", &LiveCapture::on_pose, &cap);
+    lcm.subscribe("STATUS_POSE", &LiveCapture::on_status, &cap);
+    const fs::path dir = temp_dir("status");
+    write_config(dir / "pose.toml");
+    const pid_t pid = spawn({bin("ugv-pose"), "--config", (dir / "pose.toml").string(), "--lcm-url", url}, dir / "err");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let it subscribe
+
+    // 14 s of a vehicle on a circle, in real time, stamped from now; nothing from 5 s to 9 s.
+    const auto state_now = [&] { return cap.statuses.empty() ? int8_t{-1} : cap.statuses.back().state; };
+    const int64_t start = wall_utime();
+    const Run run = simulate(circle(20.0, 3.0), Noise{}, kTestDatum, 14.0, 12, start);
+    bool running_before = false, degraded_in_gap = false, running_after = false;
+    std::string gap_error;
+    for_each_message(run, [&](const char* channel, const auto& msg, int64_t utime) {
+        while (wall_utime() < utime) {
+            lcm.handleTimeout(1);
+            const double t = static_cast<double>(wall_utime() - start) * 1e-6;
+            const int8_t s = state_now();
+            if (t < 5.0) running_before = running_before || s == ugv::daemon_status_t::STATE_RUNNING;
+            if (t > 5.0 && t < 9.0 && s == ugv::daemon_status_t::STATE_DEGRADED && !degraded_in_gap) {
+                degraded_in_gap = true;
+                gap_error = cap.statuses.back().last_error;
+            }
+            if (t > 9.0) running_after = running_after || s == ugv::daemon_status_t::STATE_RUNNING;
+        }
+        const double t = static_cast<double>(utime - start) * 1e-6;
+        if (t < 5.0 || t >= 9.0) lcm.publish(channel, &msg);
+    });
+    kill(pid, SIGTERM);
+    const int rc = wait_exit(pid, std::chrono::seconds(5));
+    INFO(slurp(dir / "err"));
+    CHECK(rc == 0);
+    CHECK(running_before);
+    CHECK(degraded_in_gap);
+    CHECK(gap_error.find("no POSE for 2.0 s") != std::string::npos);
+    CHECK(running_after);
+    fs::remove_all(dir);
+}
