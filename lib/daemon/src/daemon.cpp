@@ -176,7 +176,8 @@ void Daemon::set_state(State state, const std::string& error)
     if (!error.empty()) reason_ = error;
     // These need no output to be true: reported at once. RUNNING waits for the output
     // (update_state), so a session that says "streaming" while nothing comes out is not.
-    if (state == State::degraded || state == State::fault || state == State::stopping) report(state, reason_);
+    if (state == State::degraded || state == State::fault) report(state, reason_);
+    if (state == State::stopping) report(state, error);
 }
 
 void Daemon::report(State s, const std::string& why)
@@ -284,14 +285,12 @@ void Daemon::publish_status()
 
 void Daemon::on_watchdog()
 {
-    // Ping while RUNNING with fresh data, and while DEGRADED: then the daemon knows what is
-    // wrong and is recovering (reopening a device with back-off, dead-reckoning through a GPS
-    // outage); a restart would only lose its state and, repeated, trip the start limit. What
-    // the watchdog is for -- a hung main loop, or a session stuck while the state still says
-    // RUNNING -- stops the pings.
-    // A DEGRADED the daemon did not explain (its output stopped while it thought all was well)
-    // is a device daemon's session stuck: no ping. A processing daemon's output stops with its
-    // inputs, which a restart would not bring back.
+    // Ping while RUNNING with fresh data, and while DEGRADED for a known reason: then the
+    // daemon is recovering (reopening a device with back-off, dead-reckoning through a GPS
+    // outage), or, for a processing daemon, waiting for inputs a restart would not bring back;
+    // a restart would only lose its state and, repeated, trip the start limit. What the
+    // watchdog is for -- a hung main loop, or a device session stuck without a word (its
+    // output stopped while it said nothing) -- stops the pings.
     const State s = state_.load();
     const bool fresh = io::monotonic_us() - last_alive_us_.load() <= health_timeout_us_;
     bool explained = options_.processing;

@@ -185,7 +185,7 @@ TEST_CASE("daemon: live input, taken as it arrives or batched (bus_batch_ms), lo
     }
 }
 
-TEST_CASE("daemon: no output by startup_timeout_s -> DEGRADED naming the output; output -> RUNNING; stall -> DEGRADED")
+TEST_CASE("daemon: no output by startup_timeout_s -> DEGRADED naming the output, never RUNNING, watchdog fed")
 {
     // Issue 23, "STATUS tells the truth": the mechanism every daemon uses (port 7749).
     test::TempDir dir;
@@ -196,15 +196,20 @@ TEST_CASE("daemon: no output by startup_timeout_s -> DEGRADED naming the output;
         status.push_back(m);
     });
     const auto state_is = [&](int8_t s) { return !status.empty() && status.back().state == s; };
+    test::NotifySocket notify(dir / "notify");
     test::write_file(dir / "d.toml", "healthy = false\nstartup_timeout_s = 1\n");
     test::Process d({test::bin("ugv-test-daemon"), "--config", dir / "d.toml", "--lcm-url", url}, dir / "out",
-                    dir / "err");
+                    dir / "err", {notify.env(), "WATCHDOG_USEC=400000"});
     INFO(d.err());
     REQUIRE(test::wait_until([&] { listen->handle(20); return !status.empty(); }, 10));
     CHECK(status.front().state == daemon_status_t::STATE_STARTING);
     REQUIRE(test::wait_until([&] { listen->handle(20); return state_is(daemon_status_t::STATE_DEGRADED); }, 5));
     CHECK(status.back().last_error == "no output within startup_timeout_s = 1 s of start");
     for (const auto& s : status) CHECK(s.state != daemon_status_t::STATE_RUNNING);
+    // READY=1 came (it called ready(); a daemon that never does gets it at the deadline), and a
+    // processing daemon waiting for output is fed: a restart would not bring its inputs back.
+    CHECK(notify.wait_for("READY=1", 2));
+    CHECK(notify.wait_for("WATCHDOG=1", 2));
     d.signal(SIGTERM);
     CHECK(d.wait_exit(2.0) == 0);
 }
