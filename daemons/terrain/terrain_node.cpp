@@ -269,7 +269,8 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
         [] { return io::monotonic_us(); });
     self = &node;
     const bool egocentric = config.map.mode == terrain::MapMode::egocentric;
-    if (!config.map_file.empty() && !egocentric) spdlog::warn("map_file: the world-aligned map is not kept across restarts");
+    if (!config.map_file.empty() && !egocentric)
+        spdlog::warn("map_file: the world-aligned map is not kept across restarts");
     const bool keep_map = !config.map_file.empty() && !d.replaying() && egocentric;
     MapFileCounters file_counters;
     if (keep_map) {

@@ -87,7 +87,8 @@ TEST_CASE("ugv-terrain: killed with SIGKILL, restarted, the map comes back; move
         REQUIRE(t.l.until([&] { return !t.known.empty(); }, 10.0, [&] { pose_every([&] { feed.pose(t.l.bus()); }); }));
         std::printf("terrain restart: %d known cells in the first map after the restart\n", t.known.front());
         CHECK(t.known.front() == saved_known);
-        CHECK(wait_until([&] { return t.err().find("map restored: " + std::to_string(saved_known) + " known cells") != std::string::npos; }, 5.0));
+        const std::string restored = "map restored: " + std::to_string(saved_known) + " known cells";
+        CHECK(wait_until([&] { return t.err().find(restored) != std::string::npos; }, 5.0));
         t.l.for_seconds(1.5, [&] { pose_every([&] { feed.pose(t.l.bus()); }); });
         CHECK(t.l.counter("cells_restored") == saved_known);
         t.p->signal(SIGTERM);
@@ -100,7 +101,8 @@ TEST_CASE("ugv-terrain: killed with SIGKILL, restarted, the map comes back; move
         feed.east_m = 100.0;
         REQUIRE(t.l.until([&] { return !t.known.empty(); }, 10.0, [&] { pose_every([&] { feed.pose(t.l.bus()); }); }));
         CHECK(t.known.front() == 0);
-        CHECK(wait_until([&] { return t.err().find("saved map dropped: the first pose is 100.0 m from it") != std::string::npos; }, 5.0));
+        const std::string dropped = "saved map dropped: the first pose is 100.0 m from it";
+        CHECK(wait_until([&] { return t.err().find(dropped) != std::string::npos; }, 5.0));
         CHECK(t.p->running());
     }
     SECTION("a truncated, a damaged and a foreign file: refused in one line, starts empty, runs")
