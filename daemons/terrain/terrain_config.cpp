@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ugv/runtime/stamp_gate.hpp"
+
 namespace ugv::terrain_daemon {
 
 TerrainConfig read_config(runtime::Config& cfg)
@@ -14,6 +16,7 @@ TerrainConfig read_config(runtime::Config& cfg)
     c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
     c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 1.0, 0.0, 5.0) * 1e6));
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));
+    c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
 
     terrain::MapConfig& m = c.map;
     m.grid_size_m = cfg.get_double("grid_size_m", 0.2, 0.05, 2.0);

@@ -17,6 +17,9 @@ struct TerrainConfig
     double publish_hz = 2.0;                   // on message time
     int64_t max_point_wait_us = 1'000'000;       // how long a cloud waits for a pose after it
     int64_t health_timeout_us = 2'000'000;
+    // Inputs stamped further ahead of the bus clock are refused; older than the pose history
+    // behind it, too (runtime/stamp_gate.hpp).
+    int64_t max_stamp_ahead_us = 2'000'000;
     terrain::MapConfig map;
 };
 

@@ -10,6 +10,7 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/terrain/simd.hpp"
 
 namespace ugv::terrain_daemon {
@@ -123,7 +124,11 @@ void TerrainNode::flush()
 void TerrainNode::fuse(const point_cloud_t& msg)
 {
     terrain::PointBatch batch;
-    if (!to_batch(msg, batch)) {
+    // A point offset beyond a scan's possible span is a bad time field: the pose lookups add
+    // it to the cloud's time, which must not leave the int64 range.
+    const bool offsets_ok = std::none_of(msg.time_offset.begin(), msg.time_offset.end(),
+                                         [](float t) { return std::isfinite(t) && std::abs(t) > kMaxCloudSpanS; });
+    if (!offsets_ok || !to_batch(msg, batch)) {
         ++counters_.clouds_malformed;
         return;
     }
@@ -171,25 +176,54 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
 int run(daemon::Daemon& d, const TerrainConfig& config)
 {
     d.set_health_timeout_us(config.health_timeout_us);
+    bool stamps_refused = false;  // every message of an input refused (set below)
+    bool any_published = false;
     TerrainNode node(
         config,
-        [&d, &config](const terrain_map_t& msg) {
+        [&d, &config, &stamps_refused, &any_published](const terrain_map_t& msg) {
             bus::publish(d.out(), config.map_channel, msg);
             d.mark_alive();
-            d.ready();
+            any_published = true;
+            if (!stamps_refused) d.ready();
         },
         [] { return io::monotonic_us(); });
+    // A pose older than the pose history is of no use, nor a cloud whose poses are gone.
+    runtime::StampGate stamps({.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us});
+    const int pose_input = stamps.add_input(config.pose_channel);
+    const int points_input = stamps.add_input(config.points_channel);
     const auto sync_counters = [&] {
         runtime::set_all(d.counters(), node.mapper().counters());
         runtime::set_all(d.counters(), node.counters());
+        runtime::set_all(d.counters(), stamps.counters());
     };
     sync_counters();  // every counter is listed from the first status message on
+    // While every message of one input is refused: DEGRADED, saying which, even though maps
+    // still go out (they no longer take in what the vehicle sees, or no longer move with it);
+    // RUNNING again once one is taken.
+    const auto stamp_ok = [&](int input, int64_t utime) {
+        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
+        switch (stamps.take_change()) {
+        case runtime::StampChange::rejecting:
+            stamps_refused = true;
+            d.set_state(daemon::State::degraded, stamps.rejecting());
+            break;
+        case runtime::StampChange::cleared:
+            stamps_refused = false;
+            if (any_published) d.set_state(daemon::State::running);
+            break;
+        case runtime::StampChange::none: break;
+        }
+        if (!ok) sync_counters();
+        return ok;
+    };
     bus::subscribe<pose_t>(d.bus(), config.pose_channel, [&](const std::string&, const pose_t& m, int64_t) {
+        if (!stamp_ok(pose_input, m.utime)) return;
         node.on_pose(m);
         sync_counters();
     });
     bus::subscribe<point_cloud_t>(d.bus(), config.points_channel,
                                   [&](const std::string&, const point_cloud_t& m, int64_t) {
+                                      if (!stamp_ok(points_input, m.utime)) return;
                                       node.on_points(m);
                                       sync_counters();
                                   });

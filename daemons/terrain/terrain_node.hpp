@@ -26,7 +26,7 @@ struct NodeCounters
     uint64_t poses_in = 0;
     uint64_t poses_rejected_status = 0;  // INITIALIZING or FAULT
     uint64_t clouds_in = 0;
-    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, or no time (utime <= 0)
+    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, no time (utime <= 0), a point offset > 10 s
     uint64_t clouds_rejected_time = 0;   // more than kMaxCloudLeadUs after the newest pose: a bad clock
     uint64_t poses_rejected_time = 0;    // utime <= 0, or a jump of > 5 s the next pose did not confirm
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
