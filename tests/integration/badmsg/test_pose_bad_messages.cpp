@@ -106,7 +106,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
     run(0, 200, {});
     const int poses_before_cases = poses;
 
-    int non_finite_cases = 0;
+    int non_finite_cases = 0, too_old_cases = 0;  // utime 0 is refused by its stamp first
     run(200, 400, [&](int k, int64_t t) {
         auto fix = fix_at(t + 5'000);
         auto vel = velocity_at(t + 5'000);
@@ -115,7 +115,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
         case 210: fix.latitude = kNaN; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 215: fix.height = kInf; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 220: fix.latitude = 91.0; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
-        case 225: fix.utime = 0; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
+        case 225: fix.utime = 0; pose.publish("GPS_FIX", fix); ++too_old_cases; break;
         case 230: fix.sigma_latitude = -1.0f; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 235: imu.orientation[2] = kNaN; pose.publish("IMU", imu); ++non_finite_cases; break;
         case 240: imu.orientation[0] = 2.0; pose.publish("IMU", imu); ++non_finite_cases; break;
@@ -159,6 +159,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
     CHECK(bad_poses == 0);
     CHECK(max_offset_m < 1.0);  // the 50 m jump never reached the pose
     CHECK(pose.counter("non_finite") == non_finite_cases);
+    CHECK(pose.counter("stamps_too_old") == too_old_cases);
     CHECK(pose.counter("gps_rejected") == 1);
     CHECK(pose.counter("late") >= 1);
     CHECK(pose.counter("reordered") >= 1);

@@ -78,17 +78,20 @@ TEST_CASE("TerrainNode: clouds with no time or absurd point offsets are dropped 
     node.on_points(cloud_at(0, "front", 10));          // utime 0: no time
     node.on_points(cloud_at(-5'000'000, "front", 10));  // before the epoch
     CHECK(node.counters().clouds_malformed == 2);
-    // A point offset of 3e38 s (its end time would overflow int64) and a cloud at the end of
-    // time: both wait, are fused or dropped by the usual rules, and nothing is undefined
-    // (UBSan in tools/sanitize checks the arithmetic).
+    // A point offset of 3e38 s (its end time would overflow int64): the cloud waits by the
+    // usual rules, bounded, and is then dropped whole as malformed, since the pose lookups
+    // add the offset to its time (UBSan in tools/sanitize checks the arithmetic). A cloud
+    // with offsets within 10 s is fused.
     point_cloud_t far = cloud_at(t0 + 50'000, "front", 10);
     far.time_offset[3] = 3e38f;
     node.on_points(far);
+    point_cloud_t near = cloud_at(t0 + 60'000, "front", 10);
+    near.time_offset[3] = -9.0f;  // before the pose history: that point alone is refused
+    node.on_points(near);
     node.on_pose(pose_at(t0 + 100'000));
     node.flush();
-    CHECK(node.counters().clouds_in == 3);
-    CHECK(node.counters().clouds_malformed == 2);
-    // The far cloud's 9 good points fall in the pose history; the 3e38 s one does not.
+    CHECK(node.counters().clouds_in == 4);
+    CHECK(node.counters().clouds_malformed == 3);
     CHECK(node.mapper().counters().points_fused == 9);
     CHECK(node.counters().poses_rejected_time == 0);
     node.on_pose(pose_at(0));
