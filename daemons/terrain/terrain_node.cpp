@@ -25,6 +25,7 @@ constexpr std::size_t kRecentClouds = 64;  // per sensor, for duplicates: ~2 s o
 // ahead would wait at the head of the queue for a pose that never comes, holding back every
 // cloud behind it, and would push the publishing clock into the future: it is rejected.
 constexpr int64_t kMaxCloudLeadUs = 5'000'000;
+constexpr std::size_t kMaxWaitingClouds = 256;  // ~5 s of clouds from two lasers
 
 bool leads_too_far(int64_t cloud_us, int64_t newest_pose_us)
 {
@@ -112,6 +113,13 @@ void TerrainNode::on_points(const point_cloud_t& msg)
     recent.push_back(msg.utime);
     if (recent.size() > kRecentClouds) recent.pop_front();
     waiting_.push_back(msg);
+    // Clouds that all carry the same time never wait "long enough" by message time: the
+    // queue is bounded by count too, the oldest fused with the poses there are.
+    while (waiting_.size() > kMaxWaitingClouds) {
+        ++counters_.clouds_overflow;
+        fuse(waiting_.front());
+        waiting_.pop_front();
+    }
     fuse_ready(false);
     maybe_publish(msg.utime);
 }

@@ -3,6 +3,7 @@
 // overflow the wait arithmetic. TerrainNode, no bus.
 #include <catch2/catch.hpp>
 
+#include <string>
 #include <vector>
 
 #include "terrain_node.hpp"
@@ -158,4 +159,15 @@ TEST_CASE("TerrainNode: one pose stamped far in the future is dropped; a real ga
     node.on_pose(pose_at(t1 + 300'000));
     CHECK(node.counters().poses_rejected_time == 3);
     CHECK(node.mapper().poses().newest_us() == t1 + 300'000);
+}
+
+TEST_CASE("TerrainNode: clouds that all carry one time wait in a queue bounded by count")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    // No pose after them and no newer message: by message time they would wait for ever.
+    for (int k = 0; k < 1000; ++k) node.on_points(cloud_at(t0 + 50'000, "s" + std::to_string(k), 4));
+    CHECK(node.counters().clouds_overflow == 1000 - 256);
+    CHECK(node.mapper().counters().rejected_after_history == 4 * (1000 - 256));
 }
