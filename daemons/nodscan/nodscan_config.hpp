@@ -19,6 +19,9 @@ struct NodscanConfig
     int64_t max_wait_us = 100'000;    // how long a scan may wait for a bracketing servo sample
     int64_t servo_history_us = 2'000'000;
     std::size_t max_pending_scans = 8;
+    // Inputs stamped further ahead of the bus clock are refused; older than servo_history_us
+    // behind it, too (runtime/stamp_gate.hpp).
+    int64_t max_stamp_ahead_us = 2'000'000;
 };
 
 NodscanConfig read_config(runtime::Config& cfg);

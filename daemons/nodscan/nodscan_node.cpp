@@ -1,6 +1,7 @@
 #include "nodscan_node.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <spdlog/spdlog.h>
 
@@ -8,8 +9,23 @@
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::nodscan_daemon {
+namespace {
+
+// An LMS 2xx sweeps 180 degrees in 13-27 ms; a scan said to last longer is a bad time field
+// (and a huge one would take its last beam's time past int64).
+constexpr double kMaxScanSpanS = 1.0;
+
+bool timing_ok(const laser_scan_t& s)
+{
+    const double span = s.time_increment * static_cast<double>(std::max(0, s.nranges - 1));
+    return std::isfinite(s.time_increment) && s.time_increment >= 0.0 && span <= kMaxScanSpanS;
+}
+
+}  // namespace
+
 NodscanNode::NodscanNode(const NodscanConfig& config, Publish publish)
     : config_(config), publish_(std::move(publish)), servo_(config.servo_history_us), assembler_(config.assembler)
 {
@@ -32,6 +48,10 @@ void NodscanNode::on_scan(const laser_scan_t& msg)
         return;
     }
     ++counters_.scans_in;
+    if (!timing_ok(msg)) {
+        ++counters_.scans_bad_timing;
+        return;
+    }
     pending_.push_back(msg);
     newest_message_utime_ = std::max(newest_message_utime_, msg.utime);
     while (pending_.size() > config_.max_pending_scans) {
@@ -90,21 +110,49 @@ int run(daemon::Daemon& d, const NodscanConfig& config)
 {
     // Flowing: POINTS published (one cloud per scan that had servo angles).
     d.declare_output(config.channel, 2'000'000);
-    bool first = true;
-    NodscanNode node(config, [&d, &config, &first](const point_cloud_t& msg) {
+    bool stamps_refused = false;  // every message of an input refused (set below)
+    bool any_published = false;
+    NodscanNode node(config, [&d, &config, &stamps_refused, &any_published](const point_cloud_t& msg) {
         if (!bus::publish(d.out(), config.channel, msg)) return;
         d.mark_output();
-        if (first) d.ready();
-        first = false;
+        if (!any_published && !stamps_refused) d.ready();
+        any_published = true;
     });
-    const auto sync_counters = [&] { runtime::set_all(d.counters(), node.counters()); };
+    // A servo sample older than the history is of no use, nor a scan whose angles are gone.
+    runtime::StampGate stamps({.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.servo_history_us});
+    const int servo_input = stamps.add_input(config.servo_channel);
+    const int scan_input = stamps.add_input(config.scan_channel);
+    const auto sync_counters = [&] {
+        runtime::set_all(d.counters(), node.counters());
+        runtime::set_all(d.counters(), stamps.counters());
+    };
     sync_counters();  // every counter is listed from the first status message on
+    // While every message of one input is refused: DEGRADED, saying which (no POINTS can
+    // follow); RUNNING again once one is taken and POINTS flow.
+    const auto stamp_ok = [&](int input, int64_t utime) {
+        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
+        switch (stamps.take_change()) {
+        case runtime::StampChange::rejecting:
+            stamps_refused = true;
+            d.set_state(daemon::State::degraded, stamps.rejecting());
+            break;
+        case runtime::StampChange::cleared:
+            stamps_refused = false;
+            if (any_published) d.ready();
+            break;
+        case runtime::StampChange::none: break;
+        }
+        if (!ok) sync_counters();
+        return ok;
+    };
     bus::subscribe<servo_state_t>(d.bus(), config.servo_channel,
                                   [&](const std::string&, const servo_state_t& m, int64_t) {
+                                      if (!stamp_ok(servo_input, m.utime)) return;
                                       node.on_servo(m);
                                       sync_counters();
                                   });
     bus::subscribe<laser_scan_t>(d.bus(), config.scan_channel, [&](const std::string&, const laser_scan_t& m, int64_t) {
+        if (!stamp_ok(scan_input, m.utime)) return;
         node.on_scan(m);
         sync_counters();
     });

@@ -28,6 +28,7 @@ struct NodscanCounters
     uint64_t scans_overflow = 0;      // pending scans pushed out by newer ones
     uint64_t servo_rejected = 0;      // out of order or non-finite servo samples
     uint64_t scans_other_sensor = 0;
+    uint64_t scans_bad_timing = 0;    // beam spacing non-finite, negative, or a scan over 1 s
 
     template <class F>
     void visit(F&& f) const
@@ -41,6 +42,7 @@ struct NodscanCounters
         f("scans_overflow", scans_overflow);
         f("servo_rejected", servo_rejected);
         f("scans_other_sensor", scans_other_sensor);
+        f("scans_bad_timing", scans_bad_timing);
     }
 };
 

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "ugv/runtime/stamp_gate.hpp"
+
 namespace ugv::pose_daemon {
 
 namespace {
@@ -70,6 +72,12 @@ PoseConfig read_config(runtime::Config& cfg)
     // latency (0.15 s) before the epoch and reaches the host after BESTPOS and BESTVEL have
     // crossed the line (0.19 s at 9600 baud). At 0.15 s ugv-pose dropped them as late.
     e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.4, 0.0, 2.0));
+
+    c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    // Older than this is older than anything the filter can still use: an input is applied
+    // within buffer_s of the newest, and delivery (batching, a busy CPU) adds a little.
+    c.max_stamp_age_us = seconds_to_us(cfg.get_double("max_stamp_age_s", 2.0, 0.01, 3600.0));
+    if (c.max_stamp_age_us < e.buffer_us) cfg.fail("max_stamp_age_s", "must be at least buffer_s");
 
     c.gps_fix_channel = cfg.get_string("gps_fix_channel", c.gps_fix_channel);
     c.gps_velocity_channel = cfg.get_string("gps_velocity_channel", c.gps_velocity_channel);

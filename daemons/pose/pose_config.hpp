@@ -15,6 +15,9 @@ struct PoseConfig
     std::string gps_velocity_channel = "GPS_VEL";
     std::string imu_channel = "IMU";
     std::string channel = "POSE";
+    // Inputs stamped beyond these from the bus clock are refused (runtime/stamp_gate.hpp).
+    int64_t max_stamp_ahead_us = 2'000'000;
+    int64_t max_stamp_age_us = 2'000'000;
 };
 
 // Reads every key (ConfigError on a bad one: the daemon exits 2 with `FILE: KEY: why`).

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "ugv/runtime/stamp_gate.hpp"
+
 namespace ugv::terrain_daemon {
 
 TerrainConfig read_config(runtime::Config& cfg)
@@ -26,6 +28,7 @@ TerrainConfig read_config(runtime::Config& cfg)
     c.map_file = cfg.get_string("map_file", default_map_file);
     c.map_save_period_us =
         static_cast<int64_t>(std::llround(cfg.get_double("map_save_period_s", 10.0, 1.0, 3600.0) * 1e6));
+    c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
 
     terrain::MapConfig& m = c.map;
     m.grid_size_m = cfg.get_double("grid_size_m", 0.2, 0.05, 2.0);

@@ -20,6 +20,9 @@ struct TerrainConfig
     // Restarts: where the map is kept ("" = not kept) and how often it is saved (wall time).
     std::string map_file;
     int64_t map_save_period_us = 10'000'000;
+    // Inputs stamped further ahead of the bus clock are refused; older than the pose history
+    // behind it, too (runtime/stamp_gate.hpp).
+    int64_t max_stamp_ahead_us = 2'000'000;
     terrain::MapConfig map;
 };
 

@@ -20,6 +20,7 @@
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
 #include "ugv/runtime/rate_limited_log.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/terrain/map_state.hpp"
 #include "ugv/terrain/simd.hpp"
 
@@ -35,6 +36,7 @@ constexpr std::size_t kRecentClouds = 64;  // per sensor, for duplicates: ~2 s o
 // ahead would wait at the head of the queue for a pose that never comes, holding back every
 // cloud behind it, and would push the publishing clock into the future: it is rejected.
 constexpr int64_t kMaxCloudLeadUs = 5'000'000;
+constexpr std::size_t kMaxWaitingClouds = 256;  // ~5 s of clouds from two lasers
 
 bool leads_too_far(int64_t cloud_us, int64_t newest_pose_us)
 {
@@ -122,6 +124,13 @@ void TerrainNode::on_points(const point_cloud_t& msg)
     recent.push_back(msg.utime);
     if (recent.size() > kRecentClouds) recent.pop_front();
     waiting_.push_back(msg);
+    // Clouds that all carry the same time never wait "long enough" by message time: the
+    // queue is bounded by count too, the oldest fused with the poses there are.
+    while (waiting_.size() > kMaxWaitingClouds) {
+        ++counters_.clouds_overflow;
+        fuse(waiting_.front());
+        waiting_.pop_front();
+    }
     fuse_ready(false);
     maybe_publish(msg.utime);
 }
@@ -134,7 +143,11 @@ void TerrainNode::flush()
 void TerrainNode::fuse(const point_cloud_t& msg)
 {
     terrain::PointBatch batch;
-    if (!to_batch(msg, batch)) {
+    // A point offset beyond a scan's possible span is a bad time field: the pose lookups add
+    // it to the cloud's time, which must not leave the int64 range.
+    const bool offsets_ok = std::none_of(msg.time_offset.begin(), msg.time_offset.end(),
+                                         [](float t) { return std::isfinite(t) && std::abs(t) > kMaxCloudSpanS; });
+    if (!offsets_ok || !to_batch(msg, batch)) {
         ++counters_.clouds_malformed;
         return;
     }
@@ -257,14 +270,15 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
     // Flowing: maps whose content new points updated (a map republished as it was is not).
     d.declare_output("maps updated by new points on " + config.map_channel, config.health_timeout_us);
     TerrainNode* self = nullptr;
-    bool first = true;
+    bool stamps_refused = false;  // every message of an input refused (set below)
+    bool any_published = false;
     TerrainNode node(
         config,
-        [&d, &config, &self, &first](const terrain_map_t& msg) {
+        [&d, &config, &self, &stamps_refused, &any_published](const terrain_map_t& msg) {
             if (!bus::publish(d.out(), config.map_channel, msg)) return;
             if (self && self->map_updated()) d.mark_output();
-            if (first) d.ready();
-            first = false;
+            if (!any_published && !stamps_refused) d.ready();
+            any_published = true;
         },
         [] { return io::monotonic_us(); });
     self = &node;
@@ -276,11 +290,16 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
     if (keep_map) {
         if (auto saved = read_saved_map(config.map_file, config.map)) node.restore_at_first_pose(std::move(*saved));
     }
+    // A pose older than the pose history is of no use, nor a cloud whose poses are gone.
+    runtime::StampGate stamps({.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us});
+    const int pose_input = stamps.add_input(config.pose_channel);
+    const int points_input = stamps.add_input(config.points_channel);
     bool restore_logged = false;
     const auto sync_counters = [&] {
         runtime::set_all(d.counters(), node.mapper().counters());
         runtime::set_all(d.counters(), node.counters());
         runtime::set_all(d.counters(), file_counters);
+        runtime::set_all(d.counters(), stamps.counters());
         const auto outcome = node.mapper().restore_outcome();
         if (restore_logged || outcome == terrain::RestoreOutcome::none || outcome == terrain::RestoreOutcome::pending)
             return;
@@ -313,12 +332,33 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
         sync_counters();
     };
     sync_counters();  // every counter is listed from the first status message on
+    // While every message of one input is refused: DEGRADED, saying which, even though maps
+    // still go out (they no longer take in what the vehicle sees, or no longer move with it);
+    // RUNNING again once one is taken.
+    const auto stamp_ok = [&](int input, int64_t utime) {
+        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
+        switch (stamps.take_change()) {
+        case runtime::StampChange::rejecting:
+            stamps_refused = true;
+            d.set_state(daemon::State::degraded, stamps.rejecting());
+            break;
+        case runtime::StampChange::cleared:
+            stamps_refused = false;
+            if (any_published) d.ready();
+            break;
+        case runtime::StampChange::none: break;
+        }
+        if (!ok) sync_counters();
+        return ok;
+    };
     bus::subscribe<pose_t>(d.bus(), config.pose_channel, [&](const std::string&, const pose_t& m, int64_t) {
+        if (!stamp_ok(pose_input, m.utime)) return;
         node.on_pose(m);
         sync_counters();
     });
     bus::subscribe<point_cloud_t>(d.bus(), config.points_channel,
                                   [&](const std::string&, const point_cloud_t& m, int64_t) {
+                                      if (!stamp_ok(points_input, m.utime)) return;
                                       node.on_points(m);
                                       sync_counters();
                                   });

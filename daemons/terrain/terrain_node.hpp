@@ -26,10 +26,11 @@ struct NodeCounters
     uint64_t poses_in = 0;
     uint64_t poses_rejected_status = 0;  // INITIALIZING or FAULT
     uint64_t clouds_in = 0;
-    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, or no time (utime <= 0)
+    uint64_t clouds_malformed = 0;       // array sizes disagree with npoints, no time (utime <= 0), a point offset > 10 s
     uint64_t clouds_rejected_time = 0;   // more than kMaxCloudLeadUs after the newest pose: a bad clock
     uint64_t poses_rejected_time = 0;    // utime <= 0, or a jump of > 5 s the next pose did not confirm
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
+    uint64_t clouds_overflow = 0;        // more than 256 waiting: the oldest fused with what there is
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
 
@@ -43,6 +44,7 @@ struct NodeCounters
         f("clouds_rejected_time", clouds_rejected_time);
         f("poses_rejected_time", poses_rejected_time);
         f("clouds_duplicate", clouds_duplicate);
+        f("clouds_overflow", clouds_overflow);
         f("maps_published", maps_published);
         f("publish_time_us", last_publish_us);
     }

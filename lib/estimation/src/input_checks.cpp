@@ -6,6 +6,15 @@ namespace ugv::estimation {
 
 namespace {
 
+// Beyond this a stamp is no time at all (year ~146,000), and the estimator's arithmetic on
+// stamps (plus a period, a timeout) must not overflow.
+constexpr int64_t kMaxUtime = int64_t{1} << 62;
+
+bool sane_time(int64_t utime)
+{
+    return utime > 0 && utime < kMaxUtime;
+}
+
 bool nan_or_nonnegative(double x)
 {
     return std::isnan(x) || (std::isfinite(x) && x >= 0.0);
@@ -30,7 +39,7 @@ int quality_rank(FixQuality q)
 
 bool is_valid(const GpsFix& f)
 {
-    return f.utime > 0 && std::isfinite(f.latitude_deg) && std::isfinite(f.longitude_deg) &&
+    return sane_time(f.utime) && std::isfinite(f.latitude_deg) && std::isfinite(f.longitude_deg) &&
            std::isfinite(f.height_m) && std::fabs(f.latitude_deg) <= 90.0 && std::fabs(f.longitude_deg) <= 180.0 &&
            nan_or_nonnegative(f.sigma_north_m) && nan_or_nonnegative(f.sigma_east_m) &&
            nan_or_nonnegative(f.sigma_up_m);
@@ -38,13 +47,13 @@ bool is_valid(const GpsFix& f)
 
 bool is_valid(const GpsVelocity& v)
 {
-    return v.utime > 0 && std::isfinite(v.horizontal_speed_mps) && v.horizontal_speed_mps >= 0.0 &&
+    return sane_time(v.utime) && std::isfinite(v.horizontal_speed_mps) && v.horizontal_speed_mps >= 0.0 &&
            std::isfinite(v.track_rad) && (std::isnan(v.vertical_speed_mps) || std::isfinite(v.vertical_speed_mps));
 }
 
 bool is_valid(const ImuSample& s)
 {
-    if (s.utime <= 0 || !(s.has_orientation || s.has_rate || s.has_accel)) {
+    if (!sane_time(s.utime) || !(s.has_orientation || s.has_rate || s.has_accel)) {
         return false;
     }
     if (s.has_orientation) {

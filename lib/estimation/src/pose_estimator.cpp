@@ -153,6 +153,11 @@ void PoseEstimator::apply(const Event& e)
 {
     applied_utime_ = e.utime;
     applied_utime_by_kind_[e.data.index()] = e.utime;
+    if (initialized_ && e.utime - filter_utime_ > config_.gps_reset_after_us) {
+        initialized_ = false;
+        heading_observed_ = false;
+        ++counters_.input_gaps;
+    }
     if (initialized_) {
         advance_to(e.utime);
     }

@@ -13,6 +13,8 @@ LiveDaemon::LiveDaemon(const std::string& program, const std::string& config_tex
         daemon_status_t s;
         if (s.decode(data, 0, static_cast<int>(size)) != static_cast<int>(size)) return;
         ++statuses_;
+        state_ = s.state;
+        last_error_ = s.last_error;
         for (int k = 0; k < s.ncounters; ++k) {
             counters_[s.counter_names[static_cast<std::size_t>(k)]] = s.counter_values[static_cast<std::size_t>(k)];
         }

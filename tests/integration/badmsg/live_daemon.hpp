@@ -55,6 +55,10 @@ public:
     // statuses arrived so far.
     int64_t counter(const std::string& name) const;
     int statuses() const { return statuses_; }
+    // The state (daemon_status_t::STATE_*, -1 before any status) and last_error of the latest status.
+    int state() const { return state_; }
+    const std::string& last_error() const { return last_error_; }
+    pid_t pid() const { return process_->pid(); }
     bool running() { return process_->running(); }
     std::string stderr_text() { return process_->err(); }
     int stop();  // SIGTERM, then the exit code
@@ -74,6 +78,8 @@ private:
     std::vector<std::unique_ptr<Handler>> handlers_;
     std::map<std::string, int64_t> counters_;
     int statuses_ = 0;
+    int state_ = -1;
+    std::string last_error_;
     std::unique_ptr<Process> process_;
 };
 

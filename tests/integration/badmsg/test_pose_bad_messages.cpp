@@ -4,6 +4,7 @@
 // move it), and each case must show in its STATUS_POSE counter.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -20,7 +21,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int64_t kStartUtime = 1'700'000'000'000'000;
 constexpr int64_t kStepUs = 20'000;  // one IMU sample per step; a fix and a velocity every 10
 constexpr double kLat = 50.27, kLon = -110.74, kHeight = 750.0;
 constexpr double kMetresPerDegLat = 111'250.0;  // at 50 deg, to within 0.1 %
@@ -71,7 +71,13 @@ bool all_finite(const double* v, int n)
 
 TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and counted; POSE stays finite and in place")
 {
-    test::LiveDaemon pose("ugv-pose", "", 7960, "STATUS_POSE");
+    // Data time runs at ~2x real time from now: the stamp bounds (test_bad_stamps) are
+    // widened so that only the cases below are refused.
+    test::LiveDaemon pose("ugv-pose", "max_stamp_ahead_s = 60.0\nmax_stamp_age_s = 60.0\n", 7960, "STATUS_POSE");
+    const int64_t kStartUtime = std::chrono::duration_cast<std::chrono::microseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count() /
+                                1'000'000 * 1'000'000;
     int poses = 0, bad_poses = 0;
     double max_offset_m = 0.0;
     pose.on_decoded<pose_t>("POSE", [&](const pose_t& p) {
@@ -100,7 +106,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
     run(0, 200, {});
     const int poses_before_cases = poses;
 
-    int non_finite_cases = 0;
+    int non_finite_cases = 0, too_old_cases = 0;  // utime 0 is refused by its stamp first
     run(200, 400, [&](int k, int64_t t) {
         auto fix = fix_at(t + 5'000);
         auto vel = velocity_at(t + 5'000);
@@ -109,7 +115,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
         case 210: fix.latitude = kNaN; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 215: fix.height = kInf; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 220: fix.latitude = 91.0; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
-        case 225: fix.utime = 0; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
+        case 225: fix.utime = 0; pose.publish("GPS_FIX", fix); ++too_old_cases; break;
         case 230: fix.sigma_latitude = -1.0f; pose.publish("GPS_FIX", fix); ++non_finite_cases; break;
         case 235: imu.orientation[2] = kNaN; pose.publish("IMU", imu); ++non_finite_cases; break;
         case 240: imu.orientation[0] = 2.0; pose.publish("IMU", imu); ++non_finite_cases; break;
@@ -153,6 +159,7 @@ TEST_CASE("ugv-pose: bad messages on GPS_FIX, GPS_VEL and IMU are dropped and co
     CHECK(bad_poses == 0);
     CHECK(max_offset_m < 1.0);  // the 50 m jump never reached the pose
     CHECK(pose.counter("non_finite") == non_finite_cases);
+    CHECK(pose.counter("stamps_too_old") == too_old_cases);
     CHECK(pose.counter("gps_rejected") == 1);
     CHECK(pose.counter("late") >= 1);
     CHECK(pose.counter("reordered") >= 1);

@@ -78,7 +78,9 @@ point_cloud_t ground_patch(int64_t utime, int n)
 
 TEST_CASE("ugv-terrain: bad POSE and POINTS messages are dropped and counted; the map stays finite and sane")
 {
-    test::LiveDaemon terrain("ugv-terrain", "publish_hz = 10.0\n", 7961, "STATUS_TERRAIN");
+    // The drive runs at ~4x real time from now: the stamp bound ahead (test_bad_stamps) is
+    // widened so that only the cases below are refused.
+    test::LiveDaemon terrain("ugv-terrain", "publish_hz = 10.0\nmax_stamp_ahead_s = 60.0\n", 7961, "STATUS_TERRAIN");
     struct
     {
         int received = 0, insane = 0;
@@ -92,11 +94,14 @@ TEST_CASE("ugv-terrain: bad POSE and POINTS messages are dropped and counted; th
 
     test::SyntheticDrive drive;
     drive.duration_s = 6.0;
+    drive.start_utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                            std::chrono::system_clock::now().time_since_epoch())
+                            .count();
     int event = 0;
     int64_t last_pose_utime = 0;
     pose_t last_pose{};
     point_cloud_t last_cloud{};
-    int64_t bad_points = 0, points_before_history = 0, points_outside = 0;
+    int64_t bad_points = 0, clouds_too_old = 0, points_outside = 0;
     int poses_non_finite = 0, poses_out_of_order = 0, poses_bad_status = 0, duplicate_clouds = 0, undecodable = 0;
     drive.events([&](const std::string& channel, int64_t utime, const std::vector<uint8_t>& bytes) {
         terrain.publish_bytes(channel, bytes);
@@ -140,12 +145,12 @@ TEST_CASE("ugv-terrain: bad POSE and POINTS messages are dropped and counted; th
                 bad_points += 3;
                 break;
             }
-            case 4: {  // a cloud from 30 s before any pose the daemon keeps
+            case 4: {  // a cloud from 30 s before any pose the daemon keeps: refused by its stamp
                 point_cloud_t c = last_cloud;
                 c.sensor_id = "old";
                 c.utime -= 30'000'000;
                 terrain.publish("POINTS.old", c);
-                points_before_history += c.npoints;
+                ++clouds_too_old;
                 break;
             }
             case 6: {  // a cloud 1 km away
@@ -188,7 +193,7 @@ TEST_CASE("ugv-terrain: bad POSE and POINTS messages are dropped and counted; th
     CHECK(terrain.counter("poses_rejected_out_of_order") == poses_out_of_order);
     CHECK(terrain.counter("poses_rejected_status") == poses_bad_status);
     CHECK(terrain.counter("rejected_non_finite") == bad_points);
-    CHECK(terrain.counter("rejected_before_history") == points_before_history);
+    CHECK(terrain.counter("stamps_too_old") == clouds_too_old);
     CHECK(terrain.counter("rejected_outside_map") >= points_outside);  // plus the good lines' far ends
     CHECK(terrain.counter("bus_decode_failures") == undecodable);
     CHECK(terrain.counter("clouds_duplicate") == duplicate_clouds);
@@ -203,18 +208,22 @@ TEST_CASE("ugv-terrain --replay: a 10^6-point cloud is fused without stalling, a
     drive.duration_s = 3.0;
     const int64_t big_utime = drive.start_utime + 1'500'000;
     {
-        // LCM's file provider writes what is published into a log (the daemon's --replay goes
-        // by message time, not by the log's time stamps).
-        lcm::LCM log("file://" + (dir / "in.lcmlog") + "?mode=w");
+        // Each event stamped with its message time, as lcm-logger would have received it: the
+        // daemon's --replay refuses stamps far from the log's event time.
+        lcm::LogFile log(dir / "in.lcmlog", "w");
         REQUIRE(log.good());
         bool big_written = false;
         drive.events([&](const std::string& channel, int64_t utime, const std::vector<uint8_t>& bytes) {
             if (!big_written && utime > big_utime) {
-                const point_cloud_t big = ground_patch(big_utime, 1'000'000);
-                log.publish("POINTS.big", &big);
+                test::write_event(log, utime, "POINTS.big", ground_patch(big_utime, 1'000'000));
                 big_written = true;
             }
-            log.publish(channel, bytes.data(), static_cast<unsigned>(bytes.size()));
+            lcm::LogEvent ev{};
+            ev.timestamp = utime;
+            ev.channel = channel;
+            ev.datalen = static_cast<int32_t>(bytes.size());
+            ev.data = const_cast<uint8_t*>(bytes.data());
+            log.writeEvent(&ev);
         });
     }
     const auto started = std::chrono::steady_clock::now();

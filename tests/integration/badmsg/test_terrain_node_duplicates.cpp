@@ -3,6 +3,7 @@
 // overflow the wait arithmetic. TerrainNode, no bus.
 #include <catch2/catch.hpp>
 
+#include <string>
 #include <vector>
 
 #include "terrain_node.hpp"
@@ -78,17 +79,20 @@ TEST_CASE("TerrainNode: clouds with no time or absurd point offsets are dropped 
     node.on_points(cloud_at(0, "front", 10));          // utime 0: no time
     node.on_points(cloud_at(-5'000'000, "front", 10));  // before the epoch
     CHECK(node.counters().clouds_malformed == 2);
-    // A point offset of 3e38 s (its end time would overflow int64) and a cloud at the end of
-    // time: both wait, are fused or dropped by the usual rules, and nothing is undefined
-    // (UBSan in tools/sanitize checks the arithmetic).
+    // A point offset of 3e38 s (its end time would overflow int64): the cloud waits by the
+    // usual rules, bounded, and is then dropped whole as malformed, since the pose lookups
+    // add the offset to its time (UBSan in tools/sanitize checks the arithmetic). A cloud
+    // with offsets within 10 s is fused.
     point_cloud_t far = cloud_at(t0 + 50'000, "front", 10);
     far.time_offset[3] = 3e38f;
     node.on_points(far);
+    point_cloud_t near = cloud_at(t0 + 60'000, "front", 10);
+    near.time_offset[3] = -9.0f;  // before the pose history: that point alone is refused
+    node.on_points(near);
     node.on_pose(pose_at(t0 + 100'000));
     node.flush();
-    CHECK(node.counters().clouds_in == 3);
-    CHECK(node.counters().clouds_malformed == 2);
-    // The far cloud's 9 good points fall in the pose history; the 3e38 s one does not.
+    CHECK(node.counters().clouds_in == 4);
+    CHECK(node.counters().clouds_malformed == 3);
     CHECK(node.mapper().counters().points_fused == 9);
     CHECK(node.counters().poses_rejected_time == 0);
     node.on_pose(pose_at(0));
@@ -155,4 +159,15 @@ TEST_CASE("TerrainNode: one pose stamped far in the future is dropped; a real ga
     node.on_pose(pose_at(t1 + 300'000));
     CHECK(node.counters().poses_rejected_time == 3);
     CHECK(node.mapper().poses().newest_us() == t1 + 300'000);
+}
+
+TEST_CASE("TerrainNode: clouds that all carry one time wait in a queue bounded by count")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    // No pose after them and no newer message: by message time they would wait for ever.
+    for (int k = 0; k < 1000; ++k) node.on_points(cloud_at(t0 + 50'000, "s" + std::to_string(k), 4));
+    CHECK(node.counters().clouds_overflow == 1000 - 256);
+    CHECK(node.mapper().counters().rejected_after_history == 4 * (1000 - 256));
 }

@@ -16,6 +16,7 @@
 #include "ugv/microstrain_gx1/session.hpp"
 #include "ugv/novatel/session.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/sick_lms2xx/session.hpp"
 #include "ugv_test/process.hpp"
 
@@ -72,9 +73,10 @@ TEST_CASE("status: every library counter of every daemon is in its first STATUS 
          names_of(microstrain_gx1::ParserCounters{}, microstrain_gx1::SessionCounters{})},
         {"ugv-servo", "STATUS_SERVO", "transport = \"slcan:" + nowhere + "\"\n",
          names_of(canopen::DriveCounters{}, servo_daemon::ServoNodeCounters{})},
-        {"ugv-nodscan", "STATUS_NODSCAN", "", names_of(nodscan_daemon::NodscanCounters{})},
-        {"ugv-pose", "STATUS_POSE", "", names_of(estimation::EstimatorCounters{})},
-        {"ugv-terrain", "STATUS_TERRAIN", "", names_of(terrain::MapCounters{}, terrain_daemon::NodeCounters{})},
+        {"ugv-nodscan", "STATUS_NODSCAN", "", names_of(nodscan_daemon::NodscanCounters{}, runtime::StampCounters{})},
+        {"ugv-pose", "STATUS_POSE", "", names_of(estimation::EstimatorCounters{}, runtime::StampCounters{})},
+        {"ugv-terrain", "STATUS_TERRAIN", "",
+         names_of(terrain::MapCounters{}, terrain_daemon::NodeCounters{}, runtime::StampCounters{})},
     };
     int port = 7660;
     for (const Case& c : cases) {

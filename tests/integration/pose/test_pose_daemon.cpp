@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -162,21 +163,33 @@ void for_each_message(const Run& run, Publish&& publish)
     }
 }
 
-void write_log(const fs::path& path, const Run& run)
+// bad_stamps: after every 97th input (all three kinds in turn), the same message again stamped with each of these
+// (the log's event time stays that of the good one: a receiver's clock gone wrong).
+void write_log(const fs::path& path, const Run& run, const std::vector<int64_t (*)(int64_t)>& bad_stamps = {})
 {
     lcm::LogFile log(path.string(), "w");
     REQUIRE(log.good());
-    int64_t n = 0;
+    int64_t n = 0, good = 0;
     for_each_message(run, [&](const char* channel, const auto& msg, int64_t utime) {
-        std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
-        msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
-        lcm::LogEvent ev;
-        ev.eventnum = n++;
-        ev.timestamp = utime + 2'000;  // received 2 ms after the measurement
-        ev.channel = channel;
-        ev.datalen = static_cast<int32_t>(buf.size());
-        ev.data = buf.data();
-        REQUIRE(log.writeEvent(&ev) == 0);
+        const auto write = [&](const auto& m) {
+            std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+            m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+            lcm::LogEvent ev;
+            ev.eventnum = n++;
+            ev.timestamp = utime + 2'000;  // received 2 ms after the measurement
+            ev.channel = channel;
+            ev.datalen = static_cast<int32_t>(buf.size());
+            ev.data = buf.data();
+            REQUIRE(log.writeEvent(&ev) == 0);
+        };
+        write(msg);
+        if (good++ % 97 == 0) {
+            for (const auto stamp : bad_stamps) {
+                auto bad = msg;
+                bad.utime = stamp(utime);
+                write(bad);
+            }
+        }
     });
 }
 
@@ -247,6 +260,41 @@ TEST_CASE("--replay LOG --out LOG: bit-identical output, poses on the 100 ms gri
     CHECK(last.position_covariance[1] == last.position_covariance[3]);  // symmetric, row-major
     CHECK(last.orientation_covariance[8] > 0.0);
     CHECK(last.orientation_covariance[8] < 1e-4);  // yaw sigma < 0.01 rad once moving
+    fs::remove_all(dir);
+}
+
+TEST_CASE("--replay refuses stamps far from the log's event time: the poses are those of the clean log")
+{
+    const fs::path dir = temp_dir("stamps");
+    const Run run = simulate(circle(20.0, 3.0), Noise{}, kTestDatum, 20.0, 11);
+    write_log(dir / "clean.log", run);
+    write_log(dir / "dirty.log", run,
+              {[](int64_t) { return std::numeric_limits<int64_t>::max(); },
+               [](int64_t t) { return t + int64_t{365} * 86'400'000'000; },
+               [](int64_t) { return std::numeric_limits<int64_t>::min(); },
+               [](int64_t t) { return t - int64_t{3'600'000'000}; }});
+    write_config(dir / "pose.toml");
+    for (const char* name : {"clean", "dirty"}) {
+        const pid_t pid = spawn({bin("ugv-pose"), "--config", (dir / "pose.toml").string(), "--replay",
+                                 (dir / (std::string(name) + ".log")).string(), "--out",
+                                 (dir / (std::string(name) + ".out")).string()},
+                                dir / (std::string(name) + ".err"));
+        INFO(slurp(dir / (std::string(name) + ".err")));
+        REQUIRE(wait_exit(pid, std::chrono::seconds(60)) == 0);
+    }
+    const std::vector<ugv::pose_t> clean = read_poses(dir / "clean.out"), dirty = read_poses(dir / "dirty.out");
+    REQUIRE(clean.size() >= 198);
+    REQUIRE(dirty.size() == clean.size());
+    for (std::size_t i = 0; i < clean.size(); ++i) {
+        std::vector<uint8_t> a(static_cast<std::size_t>(clean[i].getEncodedSize())), b(a.size());
+        clean[i].encode(a.data(), 0, static_cast<int>(a.size()));
+        dirty[i].encode(b.data(), 0, static_cast<int>(b.size()));
+        CHECK(a == b);
+    }
+    const std::string err = slurp(dir / "dirty.err");
+    for (const char* channel : {"GPS_FIX:", "GPS_VEL:", "IMU:"}) {
+        CHECK(err.find(std::string(channel) + " message stamped 9223372036854775807") != std::string::npos);
+    }
     fs::remove_all(dir);
 }
 

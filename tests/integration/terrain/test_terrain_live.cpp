@@ -21,7 +21,9 @@ TEST_CASE("ugv-terrain maps live traffic and reports its counters")
     test::TempDir dir;
     const std::string url = test::lcm_url(7950);
     const std::string config = dir / "terrain.toml";
-    test::write_file(config, "publish_hz = 10.0\n");
+    // The drive below runs at ~4x real time from now: stamps may lead the clock by more than
+    // the default bound of 2 s.
+    test::write_file(config, "publish_hz = 10.0\nmax_stamp_ahead_s = 60.0\n");
     lcm::LCM bus(url);
     REQUIRE(bus.good());
     int maps = 0, statuses = 0;
@@ -63,6 +65,9 @@ TEST_CASE("ugv-terrain maps live traffic and reports its counters")
 
     test::SyntheticDrive drive;
     drive.duration_s = 2.0;
+    drive.start_utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                            std::chrono::system_clock::now().time_since_epoch())
+                            .count();
     drive.events([&](const std::string& channel, int64_t, const std::vector<uint8_t>& bytes) {
         bus.publish(channel, bytes.data(), static_cast<unsigned>(bytes.size()));
         pump(0.004);  // ~4x real time, gentle on the UDP buffers

@@ -41,6 +41,14 @@ TEST_CASE("fix: unknown sigmas are fine, non-finite or out-of-range positions ar
     f = good_fix();
     f.utime = 0;
     CHECK_FALSE(is_valid(f));
+    // A stamp beyond 2^62 us is no time; the estimator's arithmetic on stamps must not overflow.
+    f = good_fix();
+    f.utime = std::numeric_limits<int64_t>::max();
+    CHECK_FALSE(is_valid(f));
+    f.utime = int64_t{1} << 62;
+    CHECK_FALSE(is_valid(f));
+    f.utime = (int64_t{1} << 62) - 1;
+    CHECK(is_valid(f));
 }
 
 TEST_CASE("velocity: vertical may be unknown, speed and track may not")

@@ -395,3 +395,38 @@ TEST_CASE("an input delivered twice is applied once and counted as a duplicate, 
         }
     }
 }
+
+TEST_CASE("a gap in the inputs longer than gps_reset_after_us is not predicted across, whatever its length")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 10.0, 5);
+    for (const int64_t gap_us : {int64_t{30'000'000}, int64_t{365} * 86'400'000'000}) {
+        INFO("gap " << gap_us << " us");
+        PoseEstimator est(matched_config(noise));
+        int64_t last = 0;
+        for (const Input& in : run.inputs) {
+            feed(est, in);
+            std::visit([&](const auto& x) { last = std::max(last, x.utime); }, in);
+        }
+        const std::size_t before = est.take_poses().size();
+        REQUIRE(before > 50);
+        // The same inputs again, after the gap: the filter restarts from their first fix
+        // instead of emitting a pose per period of the gap.
+        for (const Input& in : run.inputs) {
+            Input shifted = in;
+            std::visit([&](auto& x) { x.utime += last - run.start_utime + gap_us; }, shifted);
+            feed(est, shifted);
+        }
+        est.flush();
+        const auto after = est.take_poses();
+        CHECK(est.counters().input_gaps == 1);
+        CHECK(after.size() <= before + 20);
+        REQUIRE_FALSE(after.empty());
+        // The first run's tail, then the second run: nothing inside the gap.
+        const auto in_gap = std::count_if(after.begin(), after.end(), [&](const PoseEstimate& p) {
+            return p.utime > last && p.utime <= last + gap_us;
+        });
+        CHECK(in_gap == 0);
+        CHECK(after.back().utime > last + gap_us);
+    }
+}

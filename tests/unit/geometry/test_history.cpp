@@ -100,3 +100,20 @@ TEST_CASE("pose history: refuses non-finite and out-of-order poses, stores a uni
     CHECK(h.oldest_us() == 1'500'100);
     CHECK(h.size() == 6);
 }
+
+TEST_CASE("TimeHistory keeps at most max_samples whatever the stamps, and takes the int64 extremes")
+{
+    TimeHistory<Tick> h(2'000'000, 100);
+    for (int k = 0; k < 1000; ++k) REQUIRE(h.add({1'000'000'000 + k, k}));  // 1 us apart: all in the span
+    CHECK(h.size() == 100);
+    CHECK(h.oldest().value == 900);
+    CHECK(h.newest().value == 999);
+
+    TimeHistory<Tick> extremes(2'000'000);
+    CHECK(extremes.add({std::numeric_limits<int64_t>::min(), 0}));
+    CHECK(extremes.add({std::numeric_limits<int64_t>::min() + 1, 1}));
+    CHECK(extremes.add({0, 2}));
+    CHECK(extremes.add({std::numeric_limits<int64_t>::max(), 3}));
+    CHECK(extremes.size() == 2);  // the span drops all but the last two
+    CHECK_FALSE(extremes.add({std::numeric_limits<int64_t>::max(), 4}));
+}

@@ -109,6 +109,24 @@ TEST_CASE("NaN beams are dropped and counted; other lasers are ignored; bad serv
     CHECK(out[0].seq == 0);
 }
 
+TEST_CASE("A scan whose beam timing is NaN, negative or over 1 s is dropped and counted")
+{
+    std::vector<point_cloud_t> out;
+    NodscanNode node(config(), [&](const point_cloud_t& m) { out.push_back(m); });
+    node.on_servo(servo(0, 0.2));
+    node.on_servo(servo(50'000, 0.2));
+    for (float dt : {NAN, -0.001f, 0.2f, 3e38f}) {  // 0.2 s x 10 beams = 2 s
+        laser_scan_t s = scan(1'000);
+        s.time_increment = dt;
+        node.on_scan(s);
+    }
+    CHECK(node.counters().scans_bad_timing == 4);
+    CHECK(node.counters().scans_in == 4);
+    node.on_scan(scan(2'000));
+    node.on_servo(servo(60'000, 0.2));
+    CHECK(out.size() == 1);  // the good one, and only it
+}
+
 TEST_CASE("ugv-nodscan configuration: mount in degrees, limits checked")
 {
     auto cfg = runtime::Config::parse("[mount]\ntilt_axis_rpy_deg = [0.0, 90.0, 0.0]\nlaser_xyz_m = [0.1, 0.0, 0.05]\n");

@@ -6,11 +6,12 @@
 
 namespace ugv::estimation {
 
-// lat/lon/height finite and in range, utime > 0, sigmas NaN (unknown) or finite and >= 0.
+// utime: 0 < utime < 2^62 for every input.
+// lat/lon/height finite and in range, sigmas NaN (unknown) or finite and >= 0.
 bool is_valid(const GpsFix& fix);
-// utime > 0, speed finite and >= 0, track finite, vertical speed finite or NaN (unknown).
+// speed finite and >= 0, track finite, vertical speed finite or NaN (unknown).
 bool is_valid(const GpsVelocity& vel);
-// utime > 0, every field flagged as present finite, orientation of unit norm (+-10 %),
+// every field flagged as present finite, orientation of unit norm (+-10 %),
 // sigma NaN (unknown) or finite and > 0, and at least one field present.
 bool is_valid(const ImuSample& imu);
 

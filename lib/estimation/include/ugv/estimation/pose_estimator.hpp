@@ -7,7 +7,10 @@
 // input older than the last one applied is too late: refused and counted.
 //
 // Poses are produced at every multiple of the output period (utime % period == 0) that the
-// filter passes, by predicting to exactly that time.
+// filter passes, by predicting to exactly that time. A gap between inputs longer than
+// gps_reset_after_us is not predicted across (one step per period of it, with poses nobody
+// wants): the filter restarts from the next fix, so the work per input is bounded whatever
+// the stamps say.
 #pragma once
 
 #include <array>
@@ -105,6 +108,7 @@ struct EstimatorCounters
     int64_t outages = 0;            // GPS outages started
     int64_t non_finite = 0;         // refused by input_checks
     int64_t filter_resets = 0;      // the filter went non-finite and restarted
+    int64_t input_gaps = 0;         // no input for > gps_reset_after_us: restarted from the next fix
     int64_t poses = 0;
 
     template <class F>
@@ -126,6 +130,7 @@ struct EstimatorCounters
         f("outages", outages);
         f("non_finite", non_finite);
         f("filter_resets", filter_resets);
+        f("input_gaps", input_gaps);
         f("duplicates", duplicates);
     }
 };

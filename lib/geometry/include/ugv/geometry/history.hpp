@@ -22,15 +22,25 @@ class TimeHistory
 {
 public:
     // Samples older than span_us before the newest are forgotten, but two are always kept
-    // so that there is a segment to interpolate on.
-    explicit TimeHistory(int64_t span_us) : span_us_(span_us) {}
+    // so that there is a segment to interpolate on. At most max_samples are kept whatever
+    // the stamps (samples 1 us apart would otherwise fill the span): the oldest go first.
+    // The default holds 100 Hz for 160 s, more than any owner's span at its sensor's rate.
+    static constexpr std::size_t kDefaultMaxSamples = 16384;
+    explicit TimeHistory(int64_t span_us, std::size_t max_samples = kDefaultMaxSamples)
+        : span_us_(span_us), max_samples_(std::max<std::size_t>(max_samples, 2))
+    {
+    }
 
     // Appends s; false (nothing stored) when it is not newer than the newest sample.
     bool add(const Sample& s)
     {
         if (!samples_.empty() && s.utime_us <= samples_.back().utime_us) return false;
         samples_.push_back(s);
-        while (samples_.size() > 2 && samples_.front().utime_us < s.utime_us - span_us_) samples_.pop_front();
+        // The oldest time kept; any stamp is taken, so the subtraction must not overflow.
+        int64_t keep_from = 0;
+        if (__builtin_sub_overflow(s.utime_us, span_us_, &keep_from)) keep_from = INT64_MIN;
+        while (samples_.size() > 2 && samples_.front().utime_us < keep_from) samples_.pop_front();
+        if (samples_.size() > max_samples_) samples_.pop_front();
         return true;
     }
 
@@ -52,6 +62,7 @@ public:
 
 private:
     int64_t span_us_;
+    std::size_t max_samples_;
     std::deque<Sample> samples_;
 };
 
