@@ -1,23 +1,17 @@
 #include "terrain_node.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
 #include "terrain_messages.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
+#include "ugv/io/whole_file.hpp"
 #include "ugv/runtime/counters.hpp"
 #include "ugv/runtime/rate_limited_log.hpp"
 #include "ugv/runtime/stamp_gate.hpp"
@@ -196,68 +190,24 @@ void TerrainNode::maybe_publish(int64_t message_time_us)
 
 namespace {
 
-// The map file is written whole to FILE.tmp, synced, and renamed over FILE (then the folder
-// synced): a crash at any point leaves the old file or the new one, never a mix.
-bool write_atomically(const std::string& path, const std::vector<uint8_t>& bytes, std::string& why)
-{
-    const std::string tmp = path + ".tmp";
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-    if (fd < 0) {
-        why = tmp + ": " + std::strerror(errno);
-        return false;
-    }
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        done += static_cast<std::size_t>(n);
-    }
-    const bool ok = done == bytes.size() && ::fsync(fd) == 0;
-    const int err = errno;
-    ::close(fd);
-    if (!ok || ::rename(tmp.c_str(), path.c_str()) != 0) {
-        why = path + ": " + std::strerror(ok ? errno : err);
-        ::unlink(tmp.c_str());
-        return false;
-    }
-    const std::string dir = std::filesystem::path(path).parent_path().string();
-    if (const int dfd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0) {
-        ::fsync(dfd);
-        ::close(dfd);
-    }
-    return true;
-}
-
 // The saved map at path, if any. A file that is not a regular file, or larger than a map of
 // this layout can be, is refused unread.
 std::optional<terrain::MapState> read_saved_map(const std::string& path, const terrain::MapConfig& map)
 {
-    struct stat st{};
-    if (::stat(path.c_str(), &st) != 0) {
-        if (errno == ENOENT)
-            spdlog::info("map_file {}: none saved yet, starting with an empty map", path);
-        else
-            spdlog::warn("map_file {}: {}; starting with an empty map", path, std::strerror(errno));
-        return std::nullopt;
-    }
+    std::vector<uint8_t> bytes;
     std::string why;
-    const std::size_t limit = terrain::max_encoded_size(map.nx(), map.ny());
-    if (!S_ISREG(st.st_mode)) {
-        why = "not a regular file";
-    } else if (static_cast<std::size_t>(st.st_size) > limit) {
-        why = std::to_string(st.st_size) + " bytes, more than a map of this layout (" + std::to_string(limit) + ")";
-    } else {
-        std::ifstream in(path, std::ios::binary);
-        std::vector<uint8_t> bytes(static_cast<std::size_t>(st.st_size));
-        in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        if (!in || in.gcount() != static_cast<std::streamsize>(bytes.size())) {
-            why = "read error";
-        } else if (auto state = terrain::decode_map_state(bytes.data(), bytes.size(), why)) {
+    switch (io::read_regular_file(path, terrain::max_encoded_size(map.nx(), map.ny()), bytes, why)) {
+    case io::ReadResult::missing:
+        spdlog::info("map_file {}: none saved yet, starting with an empty map", path);
+        return std::nullopt;
+    case io::ReadResult::ok:
+        if (auto state = terrain::decode_map_state(bytes.data(), bytes.size(), why)) {
             spdlog::info("map_file {}: {} known cells saved, restored if the first pose is within the map's extent",
                          path, state->cells.size());
             return state;
         }
+        break;
+    case io::ReadResult::refused: break;
     }
     spdlog::warn("map_file {}: refused ({}); starting with an empty map", path, why);
     return std::nullopt;
@@ -322,7 +272,8 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
         terrain::MapState state;
         if (version == saved_version || !node.mapper().save_state(state)) return;
         std::string why;
-        if (write_atomically(config.map_file, terrain::encode_map_state(state), why)) {
+        const std::vector<uint8_t> bytes = terrain::encode_map_state(state);
+        if (io::write_file_atomically(config.map_file, bytes.data(), bytes.size(), why)) {
             ++file_counters.map_saves;
             saved_version = version;
         } else {

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ugv/io/whole_file.hpp"
+
 namespace ugv::sim::world {
 
 namespace {
@@ -48,12 +50,8 @@ std::string pose_calibration(const simworld::Scenario& s)
 
 void write_file(const std::string& path, const std::string& bytes)
 {
-    const std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(tmp + ": " + std::strerror(errno));
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    if (std::fclose(f) != 0 || !ok) throw std::runtime_error(tmp + ": write failed");
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(path + ": " + std::strerror(errno));
+    std::string why;
+    if (!io::write_file_atomically(path, bytes.data(), bytes.size(), why)) throw std::runtime_error(why);
 }
 
 void write_run_folder(const std::string& dir, const simworld::World& world, const std::string& scenario_toml)
