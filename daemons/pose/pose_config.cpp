@@ -71,10 +71,10 @@ PoseConfig read_config(runtime::Config& cfg)
     // crossed the line (0.19 s at 9600 baud). At 0.15 s ugv-pose dropped them as late.
     e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.4, 0.0, 2.0));
 
-    c.gps_fix_channel = cfg.get_string("gps_fix_channel", c.gps_fix_channel);
-    c.gps_velocity_channel = cfg.get_string("gps_velocity_channel", c.gps_velocity_channel);
-    c.imu_channel = cfg.get_string("imu_channel", c.imu_channel);
-    c.channel = cfg.get_string("channel", c.channel);
+    c.gps_fix_channel = cfg.get_channel_regex("gps_fix_channel", c.gps_fix_channel);
+    c.gps_velocity_channel = cfg.get_channel_regex("gps_velocity_channel", c.gps_velocity_channel);
+    c.imu_channel = cfg.get_channel_regex("imu_channel", c.imu_channel);
+    c.channel = cfg.get_channel("channel", c.channel);
 
     e.process.accel = cfg.get_double("accel_noise", 0.1, 1e-6, 100.0);
     e.process.gyro = cfg.get_double("gyro_noise", 0.005, 1e-7, 10.0);
