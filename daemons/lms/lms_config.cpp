@@ -1,8 +1,23 @@
 #include "lms_config.hpp"
 
+#include <cctype>
 #include <cmath>
 
 namespace ugv::lms_daemon {
+
+namespace {
+
+// A channel name (Config::get_channel's checks) in UPPER_SNAKE, as the lms page asks.
+std::string channel_name(runtime::Config& cfg, const std::string& key, const std::string& def)
+{
+    std::string v = cfg.get_channel(key, def);
+    for (const char c : v)
+        if (!(std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_' || c == '.'))
+            cfg.fail(key, "'" + v + "' is not an UPPER_SNAKE channel name");
+    return v;
+}
+
+}  // namespace
 
 LmsConfig read_config(runtime::Config& cfg)
 {
@@ -26,8 +41,8 @@ LmsConfig read_config(runtime::Config& cfg)
     s.reply_timeout_ms = static_cast<int>(cfg.get_int("reply_timeout_ms", 300, 20, 5000));
     s.attempts = static_cast<int>(cfg.get_int("attempts", 3, 1, 20));
     s.silence_periods = static_cast<int>(cfg.get_int("silence_periods", 5, 2, 1000));
-    c.channel = cfg.get_channel("channel", c.channel);
-    c.raw_channel = cfg.get_channel("raw_channel", c.raw_channel);
+    c.channel = channel_name(cfg, "channel", c.channel);
+    c.raw_channel = channel_name(cfg, "raw_channel", c.raw_channel);
     c.sensor_id = cfg.get_string("sensor_id", c.sensor_id);
     if (c.sensor_id.empty()) cfg.fail("sensor_id", "must not be empty");
     c.publish_raw = cfg.get_bool("publish_raw", false);
