@@ -97,6 +97,43 @@ private:
 // Printable, and a character a channel name or pattern may hold in the journal's one line.
 bool printable(char c) { return c > ' ' && c < 0x7f; }
 
+constexpr int kMaxGroupDepth = 4;
+
+// Why a regex's structure could make its compilation explode or mean something else to
+// one of the compilers, or empty. Bracket
+// expressions ([...], where '(' and '+' are plain characters) and escapes are skipped.
+std::string nesting_problem(const std::string& re)
+{
+    int depth = 0;
+    bool after_quantifier = false;
+    for (std::size_t i = 0; i < re.size(); ++i) {
+        const char c = re[i];
+        if (c == '\\') {
+            // An escape takes the next character literally; \1, \d and the like mean
+            // different things (or overflow: \3333333333333333333) in the two compilers.
+            if (++i < re.size() && std::isalnum(static_cast<unsigned char>(re[i])))
+                return "an escape in a channel regex is for punctuation only (\\., \\*), not \\" + std::string(1, re[i]);
+            after_quantifier = false;
+        } else if (c == '[') {
+            std::size_t j = i + 1;
+            if (j < re.size() && re[j] == '^') ++j;
+            if (j < re.size() && re[j] == ']') ++j;  // a leading ']' is a member
+            while (j < re.size() && re[j] != ']') ++j;
+            i = j;
+            after_quantifier = false;
+        } else if (c == '*' || c == '+' || c == '?') {
+            if (after_quantifier) return "no quantifier on a quantifier in a channel regex";
+            after_quantifier = true;
+        } else {
+            after_quantifier = false;
+            if (c == '(' && ++depth > kMaxGroupDepth)
+                return "groups nested more than " + std::to_string(kMaxGroupDepth) + " deep in a channel regex";
+            if (c == ')') --depth;
+        }
+    }
+    return {};
+}
+
 }  // namespace
 
 std::string Config::channel_name_problem(const std::string& name)
@@ -122,9 +159,11 @@ std::string Config::channel_regex_problem(const std::string& pattern)
                std::to_string(kMaxChannelRegexChars) + " a channel regex may have";
     for (const char c : pattern)
         if (!printable(c)) return "a channel regex is printable characters without spaces";
-    // A bounded repetition is expanded by the regex compilers: a{999}{999} alone takes
-    // gigabytes. Channel patterns never need one.
+    // glibc's regcomp expands repetitions by copying what they repeat: a{999}{999}, 24
+    // stacked '+' or 20 nested (...)+ take gigabytes. Channel patterns need none of that:
+    // no {n,m}, no quantifier on a quantifier, groups nested at most kMaxGroupDepth deep.
     if (pattern.find_first_of("{}") != std::string::npos) return "'" + pattern + "': no {n,m} in a channel regex";
+    if (const std::string why = nesting_problem(pattern); !why.empty()) return "'" + pattern + "': " + why;
     const std::string anchored = "^" + pattern + "$";  // as the live bus and liblcm match it
     regex_t re{};
     const int rc = regcomp(&re, anchored.c_str(), REG_EXTENDED | REG_NOSUB);

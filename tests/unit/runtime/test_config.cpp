@@ -149,6 +149,21 @@ TEST_CASE("channel regexes to subscribe with: compile for the live bus and the r
     CHECK(regex("IMU(").find("t.toml: points: 'IMU(' is not a regex: ") == 0);
     CHECK(regex("*IMU").find("t.toml: points: '*IMU' is not a regex") == 0);
     CHECK(regex("a{99999}") == "t.toml: points: 'a{99999}': no {n,m} in a channel regex");
+    // What would make glibc's regcomp take gigabytes (found by fuzz_config): stacked and
+    // deeply nested repetitions. Brackets and escapes hold plain characters.
+    CHECK(regex("M" + std::string(30, '+')) ==
+          "t.toml: points: 'M" + std::string(30, '+') + "': no quantifier on a quantifier in a channel regex");
+    CHECK(regex("A+?").find("no quantifier on a quantifier") != std::string::npos);
+    CHECK(regex("((((((M)+)+)+)+)+)+").find("groups nested more than 4 deep") != std::string::npos);
+    CHECK(regex("((((M)+)+)+)+") == "((((M)+)+)+)+");
+    CHECK(regex("[(+*]+X\\\\++") == "[(+*]+X\\++");
+    CHECK(regex("[]A]+_[^]B]*") == "[]A]+_[^]B]*");
+    CHECK(regex("A*B+C?(D|E)*") == "A*B+C?(D|E)*");
+    // A back reference overflowed std::regex's parser (found by fuzz_config); \d is a digit
+    // to one compiler and a 'd' to the other.
+    CHECK(regex("(A)\\\\3333333333333333333").find("an escape in a channel regex is for punctuation only") !=
+          std::string::npos);
+    CHECK(regex("A\\\\d").find("not \\d") != std::string::npos);
     CHECK(regex("A B") == "t.toml: points: a channel regex is printable characters without spaces");
     CHECK(regex(std::string(256, 'A')) == "t.toml: points: is 256 characters, more than the 255 a channel regex may have");
     CHECK(regex(std::string(255, 'A')) == std::string(255, 'A'));
