@@ -77,9 +77,9 @@ GpsConfig read_config(runtime::Config& config)
     if (c.configure && c.logs.empty()) {
         config.fail("logs", "configure mode needs at least one log");
     }
-    c.channel_fix = config.get_string("channel_fix", c.channel_fix);
-    c.channel_vel = config.get_string("channel_vel", c.channel_vel);
-    c.channel_raw = config.get_string("channel_raw", c.channel_raw);
+    c.channel_fix = config.get_channel("channel_fix", c.channel_fix);
+    c.channel_vel = config.get_channel("channel_vel", c.channel_vel);
+    c.channel_raw = config.get_channel("channel_raw", c.channel_raw);
     c.publish_raw = config.get_bool("publish_raw", false);
     c.leap_seconds = static_cast<int>(config.get_int("leap_seconds", 18, 0, 60));
     c.output_latency_us = std::llround(config.get_double("output_latency_ms", 0.0, 0.0, 1000.0) * 1000.0);

@@ -22,11 +22,9 @@ ImuConfig read_config(runtime::Config& cfg)
     c.session.reply_timeout_ms = static_cast<int>(cfg.get_int("reply_timeout_ms", 300, 20, 5000));
     c.session.silence_timeout_ms = static_cast<int>(cfg.get_int("silence_timeout_ms", 1000, 100, 60000));
     c.session.latency_us = static_cast<int64_t>(std::llround(cfg.get_double("latency_ms", 0.0, 0.0, 1000.0) * 1000.0));
-    c.channel = cfg.get_string("channel", c.channel);
-    if (c.channel.empty()) cfg.fail("channel", "must not be empty");
+    c.channel = cfg.get_channel("channel", c.channel);
     c.publish_raw = cfg.get_bool("publish_raw", false);
-    c.raw_channel = cfg.get_string("raw_channel", c.raw_channel);
-    if (c.raw_channel.empty()) cfg.fail("raw_channel", "must not be empty");
+    c.raw_channel = cfg.get_channel("raw_channel", c.raw_channel);
     c.orientation_sigma_rad = cfg.get_double("orientation_sigma_deg", 2.0, 0.0, 90.0) * deg;
     const auto rpy = cfg.get_doubles("mount_rpy_deg", {0.0, 0.0, 0.0}, 3, -180.0, 180.0);
     c.r_body_sensor = microstrain_gx1::rotation_from_euler(rpy[0] * deg, rpy[1] * deg, rpy[2] * deg);

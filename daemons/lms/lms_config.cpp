@@ -7,10 +7,10 @@ namespace ugv::lms_daemon {
 
 namespace {
 
+// A channel name (Config::get_channel's checks) in UPPER_SNAKE, as the lms page asks.
 std::string channel_name(runtime::Config& cfg, const std::string& key, const std::string& def)
 {
-    std::string v = cfg.get_string(key, def);
-    if (v.empty()) cfg.fail(key, "must not be empty");
+    std::string v = cfg.get_channel(key, def);
     for (const char c : v)
         if (!(std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_' || c == '.'))
             cfg.fail(key, "'" + v + "' is not an UPPER_SNAKE channel name");

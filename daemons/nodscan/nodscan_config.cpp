@@ -19,9 +19,9 @@ Eigen::Vector3d vec3(const std::vector<double>& v, double scale = 1.0)
 NodscanConfig read_config(runtime::Config& cfg)
 {
     NodscanConfig c;
-    c.scan_channel = cfg.get_string("scan_channel", c.scan_channel);
-    c.servo_channel = cfg.get_string("servo_channel", c.servo_channel);
-    c.channel = cfg.get_string("channel", c.channel);
+    c.scan_channel = cfg.get_channel_regex("scan_channel", c.scan_channel);
+    c.servo_channel = cfg.get_channel_regex("servo_channel", c.servo_channel);
+    c.channel = cfg.get_channel("channel", c.channel);
     c.sensor_id = cfg.get_string("sensor_id", "");
     c.assembler.range_sigma_m = cfg.get_double("range_sigma_m", 0.01, 0.0, 1.0);
     c.assembler.angle_sigma_rad = cfg.get_double("angle_sigma_deg", 0.05, 0.0, 10.0) * kDeg;

@@ -79,10 +79,10 @@ PoseConfig read_config(runtime::Config& cfg)
     c.max_stamp_age_us = seconds_to_us(cfg.get_double("max_stamp_age_s", 2.0, 0.01, 3600.0));
     if (c.max_stamp_age_us < e.buffer_us) cfg.fail("max_stamp_age_s", "must be at least buffer_s");
 
-    c.gps_fix_channel = cfg.get_string("gps_fix_channel", c.gps_fix_channel);
-    c.gps_velocity_channel = cfg.get_string("gps_velocity_channel", c.gps_velocity_channel);
-    c.imu_channel = cfg.get_string("imu_channel", c.imu_channel);
-    c.channel = cfg.get_string("channel", c.channel);
+    c.gps_fix_channel = cfg.get_channel_regex("gps_fix_channel", c.gps_fix_channel);
+    c.gps_velocity_channel = cfg.get_channel_regex("gps_velocity_channel", c.gps_velocity_channel);
+    c.imu_channel = cfg.get_channel_regex("imu_channel", c.imu_channel);
+    c.channel = cfg.get_channel("channel", c.channel);
 
     e.process.accel = cfg.get_double("accel_noise", 0.1, 1e-6, 100.0);
     e.process.gyro = cfg.get_double("gyro_noise", 0.005, 1e-7, 10.0);

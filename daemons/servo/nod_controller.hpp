@@ -5,6 +5,7 @@
 // No I/O, no bus: the daemon feeds it time and the commands it received.
 #pragma once
 
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -21,7 +22,19 @@ struct NodControllerOptions
     double min_speed_rad_s = 0.05;    // ... but at least this much,
     double catch_up_s = 0.1;          // ... plus the distance still to go over this time
     double hold_speed_rad_s = 0.5;    // moving to a HOLD angle (or a STOP)
+    // What a command may ask (beyond nodscan::validate's limits): a constant rate the drive
+    // can give, a nod that comes back within max_nod_period_s (a tiny rate or spacing would
+    // otherwise stop the nod, unseen), spacings and heights in the config keys' ranges.
+    double max_rate_rad_s = 120.0 * std::numbers::pi / 180.0;
+    double max_nod_period_s = 120.0;
+    double min_ground_spacing_m = 0.001, max_ground_spacing_m = 10.0;
+    double min_sensor_height_m = 0.01, max_sensor_height_m = 10.0;
 };
+
+// Why a command (from SERVO_COMMAND or the config's default profile) must be refused, or
+// nullopt: an unknown profile, anything nodscan::validate refuses, or a value outside the
+// options' ranges above.
+std::optional<std::string> check_command(const nodscan::NodCommand& command, const NodControllerOptions& options);
 
 class NodController
 {

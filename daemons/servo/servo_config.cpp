@@ -1,13 +1,32 @@
 #include "servo_config.hpp"
 
+#include <array>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include "ugv/io/can_transport.hpp"
 
 namespace ugv::servo_daemon {
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
+// The serial rates of UART slcan bridges (USB CDC adapters ignore the rate).
+constexpr std::array<int, 12> kSlcanBauds = {9600,   19200,  38400,   57600,   115200,  230400,
+                                             460800, 500000, 921600, 1000000, 2000000, 3000000};
+
+// The BAUD of "slcan:PATH@BAUD" when it is not one of kSlcanBauds (the spec parsed already).
+std::optional<std::string> bad_slcan_baud(const std::string& transport)
+{
+    const auto at = transport.rfind('@');
+    if (transport.rfind("slcan:", 0) != 0 || at == std::string::npos) return std::nullopt;
+    const std::string baud = transport.substr(at + 1);
+    for (const int b : kSlcanBauds)
+        if (baud == std::to_string(b)) return std::nullopt;
+    std::string list;
+    for (const int b : kSlcanBauds) list += (list.empty() ? "" : ", ") + std::to_string(b);
+    return "slcan baud " + baud + " is not one of " + list;
 }
+}  // namespace
 
 ServoConfig read_config(runtime::Config& cfg)
 {
@@ -20,8 +39,9 @@ ServoConfig read_config(runtime::Config& cfg)
     } catch (const std::invalid_argument& e) {
         cfg.fail("transport", e.what());
     }
-    c.channel = cfg.get_string("channel", c.channel);
-    c.command_channel = cfg.get_string("command_channel", c.command_channel);
+    if (auto why = bad_slcan_baud(c.transport)) cfg.fail("transport", *why);
+    c.channel = cfg.get_channel("channel", c.channel);
+    c.command_channel = cfg.get_channel_regex("command_channel", c.command_channel);
 
     canopen::DriveConfig& d = c.drive;
     d.node_id = static_cast<uint8_t>(cfg.get_int("node_id", 1, 1, 127));
@@ -48,6 +68,8 @@ ServoConfig read_config(runtime::Config& cfg)
     c.nod.hard_limits = {min_tilt, max_tilt};
     c.nod.lead_s = cfg.get_double("setpoint_lead_ms", 50.0, 0.0, 1000.0) * 1e-3;
     c.nod.hold_speed_rad_s = cfg.get_double("hold_rate_deg_s", 30.0, 0.1, 3600.0) * kDeg;
+    c.nod.max_rate_rad_s = d.max_velocity_rad_s;
+    c.nod.max_nod_period_s = cfg.get_double("max_nod_period_s", 120.0, 1.0, 3600.0);
 
     runtime::Config p = cfg.section("profile");
     nodscan::NodCommand& n = c.default_profile;
@@ -64,7 +86,7 @@ ServoConfig read_config(runtime::Config& cfg)
     n.ground_spacing_m = p.get_double("ground_spacing_m", 0.2, 0.001, 10.0);
     n.sensor_height_m = p.get_double("sensor_height_m", 0.87, 0.01, 10.0);
     n.scan_period_s = p.get_double("scan_period_s", 1.0 / 37.5, 0.001, 10.0);
-    if (auto why = nodscan::validate(n, c.nod.hard_limits)) p.fail("kind", *why);
+    if (auto why = check_command(n, c.nod)) p.fail("kind", *why);
 
     c.control_period_us = cfg.get_int("control_period_ms", 10, 1, 50) * 1000;
     // The TPDO clock fits the least delayed arrival of each half second (io::PeriodicClock):

@@ -10,7 +10,7 @@ nodscan::NodCommand from_message(const servo_command_t& m, double scan_period_s)
     case servo_command_t::PROFILE_HOLD: c.kind = nodscan::NodKind::hold; break;
     case servo_command_t::PROFILE_CONSTANT_RATE: c.kind = nodscan::NodKind::constant_rate; break;
     case servo_command_t::PROFILE_UNIFORM_GROUND_SPACING: c.kind = nodscan::NodKind::uniform_ground_spacing; break;
-    default: c.kind = static_cast<nodscan::NodKind>(-1); break;
+    default: c.kind = static_cast<nodscan::NodKind>(m.profile); break;  // refused by check_command
     }
     c.hold_angle_rad = m.hold_angle;
     c.min_tilt_rad = m.min_tilt;

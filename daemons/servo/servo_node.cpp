@@ -228,13 +228,16 @@ void ServoNode::on_command(const servo_command_t& msg)
 {
     const auto cmd = from_message(msg, config_.default_profile.scan_period_s);
     const auto last = drive_.last_sample();
+    // One key per outcome, not per reason: a flood of commands writes a line per interval
+    // with the count of the others, and the reasons (which quote values) never fill the map.
     if (auto why = nod_.apply(cmd, now_s(), last ? last->angle_rad : 0.0)) {
         ++counters_.commands_refused;
-        spdlog::warn("SERVO_COMMAND refused: {}", *why);
+        log_.log(spdlog::level::warn, "command refused", "SERVO_COMMAND refused: " + *why, io::monotonic_us());
         return;
     }
     ++counters_.commands_accepted;
-    spdlog::info("profile {}", nodscan::to_string(cmd.kind));
+    log_.log(spdlog::level::info, "command accepted", std::string("SERVO_COMMAND accepted: profile ") + nodscan::to_string(cmd.kind),
+             io::monotonic_us());
 }
 
 void ServoNode::sync_counters()

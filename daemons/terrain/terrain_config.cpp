@@ -12,9 +12,9 @@ namespace ugv::terrain_daemon {
 TerrainConfig read_config(runtime::Config& cfg)
 {
     TerrainConfig c;
-    c.points_channel = cfg.get_string("points_channel", c.points_channel);
-    c.pose_channel = cfg.get_string("pose_channel", c.pose_channel);
-    c.map_channel = cfg.get_string("map_channel", c.map_channel);
+    c.points_channel = cfg.get_channel_regex("points_channel", c.points_channel);
+    c.pose_channel = cfg.get_channel_regex("pose_channel", c.pose_channel);
+    c.map_channel = cfg.get_channel("map_channel", c.map_channel);
     c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
     c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 1.0, 0.0, 5.0) * 1e6));
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));

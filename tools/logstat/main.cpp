@@ -16,6 +16,30 @@
 #include "ugv/logstat/channel_stats.hpp"
 #include "ugv/logstat/scan_to_map.hpp"
 
+namespace {
+
+// A channel name as a JSON string body: a log's channel names are whatever was published.
+std::string json_escaped(const std::string& s)
+{
+    std::string out;
+    for (const char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (u < 0x20 || u == 0x7f) {
+            char b[8];
+            std::snprintf(b, sizeof b, "\\u%04x", u);
+            out += b;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 int main(int argc, char** argv)
 {
     std::string log, channel = ".*";
@@ -44,7 +68,7 @@ int main(int argc, char** argv)
         ugv::bus::subscribe<ugv::laser_scan_t>(
             *bus, scan_channel, [&](const std::string&, const ugv::laser_scan_t& s, int64_t t) {
                 const double span_us = static_cast<double>(s.time_increment) * 1e6 * std::max(0, s.nranges - 1);
-                latency.add_scan(t, s.utime + std::llround(span_us));
+                latency.add_scan(t, ugv::logstat::shifted_utime(s.utime, span_us));
             });
         bus->subscribe(map_channel, [&](const std::string&, const uint8_t* d, std::size_t n, int64_t t) {
             int64_t utime = 0, seq = 0;
@@ -74,8 +98,8 @@ int main(int argc, char** argv)
         if (json)
             std::printf("{\"channel\":\"%s\",\"count\":%lld,\"rate_hz\":%.3f,\"max_interval_ms\":%.1f,\"bytes_per_msg\":%.0f,"
                         "\"seq_gaps\":%lld,\"seq_backwards\":%lld}\n",
-                        ch.c_str(), static_cast<long long>(s.count), s.rate_hz(), static_cast<double>(s.max_interval_us) / 1e3,
-                        kb * 1024.0, static_cast<long long>(s.seq_gaps), static_cast<long long>(s.seq_backwards));
+                        json_escaped(ch).c_str(), static_cast<long long>(s.count), s.rate_hz(),
+                        static_cast<double>(s.max_interval_us) / 1e3, kb * 1024.0, static_cast<long long>(s.seq_gaps), static_cast<long long>(s.seq_backwards));
         else
             std::printf("%-24s %8lld %9.2f %10.1f %9.2f %6lld %12lld\n", ch.c_str(), static_cast<long long>(s.count), s.rate_hz(),
                         static_cast<double>(s.max_interval_us) / 1e3, kb, static_cast<long long>(s.seq_gaps),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace ugv::logstat {
 
@@ -17,7 +18,9 @@ void ScanToMapLatency::add_map(int64_t recv_utime, int64_t map_utime)
     auto it = pending_.begin();
     while (it != pending_.end()) {
         if (it->last_beam_utime <= map_utime && it->recv_utime <= recv_utime) {
-            latencies_.push_back(recv_utime - it->recv_utime);
+            // Exact in uint64; a difference beyond INT64_MAX (only in a hostile log) saturates.
+            const uint64_t d = static_cast<uint64_t>(recv_utime) - static_cast<uint64_t>(it->recv_utime);
+            latencies_.push_back(static_cast<int64_t>(std::min<uint64_t>(d, INT64_MAX)));
             it = pending_.erase(it);
         } else if (it->last_beam_utime > map_utime) {
             break;
@@ -25,6 +28,18 @@ void ScanToMapLatency::add_map(int64_t recv_utime, int64_t map_utime)
             ++it;
         }
     }
+}
+
+int64_t shifted_utime(int64_t utime, double offset_us)
+{
+    if (!std::isfinite(offset_us)) return utime;
+    const double t = static_cast<double>(utime) + std::round(offset_us);
+    // 2^63 is exactly representable; anything at or beyond it (either way) saturates.
+    if (t >= 9223372036854775808.0) return INT64_MAX;
+    if (t <= -9223372036854775808.0) return INT64_MIN;
+    // Within a microsecond where double holds it (|t| < 2^53); coarser only for absurd stamps.
+    if (std::fabs(offset_us) < 9e15 && std::fabs(static_cast<double>(utime)) < 9e15) return utime + std::llround(offset_us);
+    return static_cast<int64_t>(t);
 }
 
 int64_t percentile(std::vector<int64_t> values, double p)

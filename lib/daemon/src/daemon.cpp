@@ -123,7 +123,7 @@ Daemon::Daemon(Options options, int argc, char** argv) : options_(std::move(opti
             def_status = "STATUS_" + options_.name.substr(options_.name.rfind('-') + 1);
             for (auto& c : def_status) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         }
-        status_channel_ = config_->get_string("status_channel", def_status);
+        status_channel_ = config_->get_channel("status_channel", def_status);
         bus_batch_us_ = config_->get_int("bus_batch_ms", options_.bus_batch_ms, 0, 100) * 1000;
         startup_timeout_us_ = std::llround(config_->get_double("startup_timeout_s", 30.0, 1.0, 3600.0) * 1e6);
     } catch (const runtime::ConfigError& e) {

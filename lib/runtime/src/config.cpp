@@ -1,7 +1,15 @@
 #include "ugv/runtime/config.hpp"
 
+#include <fcntl.h>
+#include <regex.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstring>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -48,7 +56,130 @@ std::string fmt_double(double d)
     return s.str();
 }
 
+// Why a file of this mode is not a config file, or nullptr for a regular file.
+const char* not_a_file(mode_t mode)
+{
+    if (S_ISREG(mode)) return nullptr;
+    if (S_ISDIR(mode)) return "is a directory, not a file";
+    if (S_ISFIFO(mode)) return "is a FIFO, not a file";
+    if (S_ISCHR(mode)) return "is a character device, not a file";
+    if (S_ISBLK(mode)) return "is a block device, not a file";
+    if (S_ISSOCK(mode)) return "is a socket, not a file";
+    return "is not a regular file";
+}
+
+std::string too_large(const std::string& size)
+{
+    return "is " + size + " bytes, more than the " + std::to_string(Config::kMaxFileBytes) + " a config file may have";
+}
+
+std::string too_large()
+{
+    return "has more than the " + std::to_string(Config::kMaxFileBytes) + " bytes a config file may have";
+}
+
+class Fd
+{
+public:
+    explicit Fd(int fd) : fd_(fd) {}
+    ~Fd()
+    {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    int get() const { return fd_; }
+
+private:
+    int fd_;
+};
+
+// Printable, and a character a channel name or pattern may hold in the journal's one line.
+bool printable(char c) { return c > ' ' && c < 0x7f; }
+
+constexpr int kMaxGroupDepth = 4;
+
+// Why a regex's structure could make its compilation explode or mean something else to
+// one of the compilers, or empty. Bracket
+// expressions ([...], where '(' and '+' are plain characters) and escapes are skipped.
+std::string nesting_problem(const std::string& re)
+{
+    int depth = 0;
+    bool after_quantifier = false;
+    for (std::size_t i = 0; i < re.size(); ++i) {
+        const char c = re[i];
+        if (c == '\\') {
+            // An escape takes the next character literally; \1, \d and the like mean
+            // different things (or overflow: \3333333333333333333) in the two compilers.
+            if (++i < re.size() && std::isalnum(static_cast<unsigned char>(re[i])))
+                return "an escape in a channel regex is for punctuation only (\\., \\*), not \\" + std::string(1, re[i]);
+            after_quantifier = false;
+        } else if (c == '[') {
+            std::size_t j = i + 1;
+            if (j < re.size() && re[j] == '^') ++j;
+            if (j < re.size() && re[j] == ']') ++j;  // a leading ']' is a member
+            while (j < re.size() && re[j] != ']') ++j;
+            i = j;
+            after_quantifier = false;
+        } else if (c == '*' || c == '+' || c == '?') {
+            if (after_quantifier) return "no quantifier on a quantifier in a channel regex";
+            after_quantifier = true;
+        } else {
+            after_quantifier = false;
+            if (c == '(' && ++depth > kMaxGroupDepth)
+                return "groups nested more than " + std::to_string(kMaxGroupDepth) + " deep in a channel regex";
+            if (c == ')') --depth;
+        }
+    }
+    return {};
+}
+
 }  // namespace
+
+std::string Config::channel_name_problem(const std::string& name)
+{
+    if (name.empty()) return "must not be empty";
+    if (name.size() > kMaxChannelChars)
+        return "is " + std::to_string(name.size()) + " characters, more than LCM's " + std::to_string(kMaxChannelChars);
+    for (const char c : name)
+        if (!printable(c)) return "a channel name is letters, digits, '_', '-' and '.' (found a space or control character)";
+    for (const char c : name) {
+        const auto u = static_cast<unsigned char>(c);
+        if (!(std::isalnum(u) || c == '_' || c == '-' || c == '.'))
+            return "'" + name + "' is not a channel name (letters, digits, '_', '-', '.')";
+    }
+    return {};
+}
+
+std::string Config::channel_regex_problem(const std::string& pattern)
+{
+    if (pattern.empty()) return "must not be empty";
+    if (pattern.size() > kMaxChannelRegexChars)
+        return "is " + std::to_string(pattern.size()) + " characters, more than the " +
+               std::to_string(kMaxChannelRegexChars) + " a channel regex may have";
+    for (const char c : pattern)
+        if (!printable(c)) return "a channel regex is printable characters without spaces";
+    // glibc's regcomp expands repetitions by copying what they repeat: a{999}{999}, 24
+    // stacked '+' or 20 nested (...)+ take gigabytes. Channel patterns need none of that:
+    // no {n,m}, no quantifier on a quantifier, groups nested at most kMaxGroupDepth deep.
+    if (pattern.find_first_of("{}") != std::string::npos) return "'" + pattern + "': no {n,m} in a channel regex";
+    if (const std::string why = nesting_problem(pattern); !why.empty()) return "'" + pattern + "': " + why;
+    const std::string anchored = "^" + pattern + "$";  // as the live bus and liblcm match it
+    regex_t re{};
+    const int rc = regcomp(&re, anchored.c_str(), REG_EXTENDED | REG_NOSUB);
+    if (rc != 0) {
+        char why[128];
+        regerror(rc, &re, why, sizeof why);
+        return "'" + pattern + "' is not a regex: " + why;
+    }
+    regfree(&re);
+    try {
+        std::regex check(pattern);  // the log replay's matching
+    } catch (const std::exception& e) {  // regex_error; any other failure refuses it as well
+        return "'" + pattern + "' is not a regex: " + e.what();
+    }
+    return {};
+}
 
 Config::Config(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Config::Config(Config&&) noexcept = default;
@@ -73,11 +204,32 @@ Config Config::parse(const std::string& text, const std::string& name)
 
 Config Config::load(const std::string& path)
 {
-    std::ifstream in(path);
-    if (!in) throw ConfigError(path, "-", "cannot read the file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse(ss.str(), path);
+    const auto cannot = [&path](const char* what) {
+        return ConfigError(path, "-", std::string("cannot read the file: ") + what);
+    };
+    // stat() first: a FIFO or a device is refused before open() could block on it or act on
+    // the device; the fstat() after open() refuses what was swapped in between.
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0) throw cannot(std::strerror(errno));
+    if (const char* why = not_a_file(st.st_mode)) throw ConfigError(path, "-", why);
+    if (static_cast<uintmax_t>(st.st_size) > kMaxFileBytes) throw ConfigError(path, "-", too_large(std::to_string(st.st_size)));
+    Fd fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
+    if (fd.get() < 0) throw cannot(std::strerror(errno));
+    if (::fstat(fd.get(), &st) != 0) throw cannot(std::strerror(errno));
+    if (const char* why = not_a_file(st.st_mode)) throw ConfigError(path, "-", why);
+    // The size a regular file reports is not a bound (/proc files say 0, a file may grow):
+    // read one byte past the limit at most.
+    std::string text;
+    char buf[16384];
+    for (;;) {
+        const ssize_t n = ::read(fd.get(), buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw cannot(std::strerror(errno));
+        if (n == 0) break;
+        text.append(buf, static_cast<std::size_t>(n));
+        if (text.size() > kMaxFileBytes) throw ConfigError(path, "-", too_large());
+    }
+    return parse(text, path);
 }
 
 Config Config::empty(const std::string& name) { return parse("", name); }
@@ -218,6 +370,20 @@ std::vector<std::string> Config::get_strings(const std::string& key, const std::
     toml::array out;
     for (const auto& s : v) out.push_back(s);
     impl_->effective_here->insert_or_assign(key, out);
+    return v;
+}
+
+std::string Config::get_channel(const std::string& key, const std::string& def)
+{
+    std::string v = get_string(key, def);
+    if (const std::string why = channel_name_problem(v); !why.empty()) fail(key, why);
+    return v;
+}
+
+std::string Config::get_channel_regex(const std::string& key, const std::string& def)
+{
+    std::string v = get_string(key, def);
+    if (const std::string why = channel_regex_problem(v); !why.empty()) fail(key, why);
     return v;
 }
 

@@ -1,5 +1,6 @@
 // Any bytes as a daemon's config file: either a ConfigError (one line) or values within the
-// ranges asked for. Never a crash, never another exception.
+// ranges asked for; a channel name or regex that is returned passes its own check (so the
+// regex compilers saw it and did not crash). Never a crash, never another exception.
 #include <cstdlib>
 #include <string>
 
@@ -17,6 +18,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         c.get_bool("publish_raw", false);
         c.get_doubles("offset_m", {0, 0, 0}, 3, -10, 10);
         c.get_strings("logs", {});
+        const std::string channel = c.get_channel("channel", "LMS_SCAN");
+        const std::string pattern = c.get_channel_regex("points_channel", "POINTS.*");
+        if (!ugv::runtime::Config::channel_name_problem(channel).empty() || channel.size() > 63) std::abort();
+        if (!ugv::runtime::Config::channel_regex_problem(pattern).empty()) std::abort();
         auto s = c.section("mount");
         s.get_double("tilt_deg", 0, -90, 90);
         c.finish();

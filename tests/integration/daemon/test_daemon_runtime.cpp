@@ -88,7 +88,7 @@ TEST_CASE("daemon: config errors exit 2 with one line FILE: KEY: why")
     CHECK(err == dir / "d.toml" + ": realtime.fifo_priority: 120 is out of range [0, 99]\n");
     code = test::run({test::bin("ugv-test-daemon"), "--config", dir / "missing.toml"}, dir / "o", dir / "e");
     CHECK(code == 2);
-    CHECK(test::read_file(dir / "e") == dir / "missing.toml" + ": -: cannot read the file\n");
+    CHECK(test::read_file(dir / "e") == dir / "missing.toml" + ": -: cannot read the file: No such file or directory\n");
     code = test::run({test::bin("ugv-test-daemon"), "--lcm-url", "bogus://"}, dir / "o", dir / "e");
     CHECK(code == 2);
     CHECK(test::read_file(dir / "e").find("ugv-test-daemon: LCM cannot be created for 'bogus://'") != std::string::npos);

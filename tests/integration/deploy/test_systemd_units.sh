@@ -43,6 +43,21 @@ for u in "${units[@]}"; do
       || check ok "$u: real-time scheduling allowed"
   fi
 done
+# Memory limits (docs/deploy.md "Memory limits"): every daemon has MemoryHigh below
+# MemoryMax; the logger a MemoryMax only (its page cache is charged to it).
+mib() { case $1 in *K) echo $(( ${1%K} / 1024 ));; *M) echo "${1%M}";; *G) echo $(( ${1%G} * 1024 ));; *) echo -1;; esac; }
+for u in "${units[@]}"; do
+  [[ $u == *.service ]] || continue
+  f=$units_dir/$u
+  high=$(sed -n 's/^MemoryHigh=//p' "$f"); max=$(sed -n 's/^MemoryMax=//p' "$f")
+  if [[ $u == ugv-logger.service ]]; then
+    [ -n "$max" ] && [ -z "$high" ] && check ok "$u: MemoryMax=$max, no MemoryHigh" || check no "$u: want MemoryMax only (High '$high', Max '$max')"
+  elif [ -n "$high" ] && [ -n "$max" ] && [ "$(mib "$high")" -gt 0 ] && [ "$(mib "$high")" -lt "$(mib "$max")" ]; then
+    check ok "$u: MemoryHigh=$high < MemoryMax=$max"
+  else
+    check no "$u: want MemoryHigh < MemoryMax (High '$high', Max '$max')"
+  fi
+done
 grep -q -- '--lcm-url=' "$units_dir/ugv-logger.service" && check ok "ugv-logger uses --lcm-url= (not the broken -l)" \
   || check no "ugv-logger must use --lcm-url="
 # ugv-logger's own command line runs (verify does not run it): lcm-logger refused the -i

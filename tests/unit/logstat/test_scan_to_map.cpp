@@ -1,5 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <limits>
+#include <vector>
+
 #include "ugv/logstat/scan_to_map.hpp"
 
 using namespace ugv::logstat;
@@ -34,4 +37,20 @@ TEST_CASE("percentiles by nearest rank")
     CHECK(percentile({5, 1, 3, 2, 4}, 50) == 3);
     CHECK(percentile({5, 1, 3, 2, 4}, 99) == 5);
     CHECK(percentile({5, 1, 3, 2, 4}, 0) == 1);
+}
+
+TEST_CASE("scan times from a hostile log saturate instead of overflowing")
+{
+    constexpr int64_t kMin = std::numeric_limits<int64_t>::min();
+    constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
+    CHECK(shifted_utime(1'000, 26'666.4) == 27'666);
+    CHECK(shifted_utime(kMax, 1e6) == kMax);
+    CHECK(shifted_utime(kMin, -1e6) == kMin);
+    CHECK(shifted_utime(0, 1e300) == kMax);
+    CHECK(shifted_utime(5, std::numeric_limits<double>::quiet_NaN()) == 5);
+    CHECK(shifted_utime(5, std::numeric_limits<double>::infinity()) == 5);
+    ScanToMapLatency l;
+    l.add_scan(kMin, kMin);
+    l.add_map(kMax, kMax);
+    CHECK(l.latencies_us() == std::vector<int64_t>{kMax});
 }

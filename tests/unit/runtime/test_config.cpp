@@ -1,5 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "ugv/runtime/config.hpp"
 #include "ugv_test/process.hpp"
 
@@ -63,7 +66,107 @@ TEST_CASE("every kind of config error is one line FILE: KEY: why")
 
 TEST_CASE("a missing file is a config error naming the file")
 {
-    CHECK_THROWS_WITH(Config::load("/nonexistent/ugv.toml"), "/nonexistent/ugv.toml: -: cannot read the file");
+    CHECK_THROWS_WITH(Config::load("/nonexistent/ugv.toml"),
+                      "/nonexistent/ugv.toml: -: cannot read the file: No such file or directory");
+}
+
+TEST_CASE("only a regular file of at most 1 MB is a config: the rest is refused before reading")
+{
+    ugv::test::TempDir dir;
+    const auto error = [](const std::string& path) {
+        try {
+            (void)Config::load(path);
+            return std::string("(loaded)");
+        } catch (const ConfigError& e) {
+            return std::string(e.what());
+        }
+    };
+    CHECK(error(dir.path().string()) == dir.path().string() + ": -: is a directory, not a file");
+    // A FIFO with no writer: refused at once, where reading it would wait for a writer forever.
+    REQUIRE(mkfifo((dir / "fifo").c_str(), 0600) == 0);
+    CHECK(error(dir / "fifo") == dir / "fifo" + ": -: is a FIFO, not a file");
+    CHECK(error("/dev/zero") == "/dev/zero: -: is a character device, not a file");
+    CHECK(error("/dev/urandom") == "/dev/urandom: -: is a character device, not a file");
+    // A regular file that cannot be read (or that reports a size of 0 and never ends).
+    CHECK(error("/proc/self/mem") == "/proc/self/mem: -: cannot read the file: Input/output error");
+    ugv::test::write_file(dir / "big.toml", std::string(Config::kMaxFileBytes + 1, '#'));
+    CHECK(error(dir / "big.toml") == dir / "big.toml" + ": -: is 1048577 bytes, more than the 1048576 a config file may have");
+    // Exactly the limit is fine: a comment, then one key.
+    ugv::test::write_file(dir / "full.toml", std::string(Config::kMaxFileBytes - 10, '#') + "\nbaud = 1\n");
+    Config full = Config::load(dir / "full.toml");
+    CHECK(full.get_int("baud", 0, 0, 9) == 1);
+    // A symbolic link to a file is followed; to a directory it is refused like the directory.
+    REQUIRE(symlink((dir / "full.toml").c_str(), (dir / "link.toml").c_str()) == 0);
+    CHECK_NOTHROW(Config::load(dir / "link.toml"));
+    REQUIRE(symlink(dir.path().c_str(), (dir / "dirlink.toml").c_str()) == 0);
+    CHECK(error(dir / "dirlink.toml") == dir / "dirlink.toml" + ": -: is a directory, not a file");
+}
+
+TEST_CASE("channel names to publish on: letters, digits, '_', '-', '.', 1 to 63 characters")
+{
+    const auto name = [](const std::string& toml) {
+        try {
+            Config c = Config::parse(toml, "d.toml");
+            return c.get_channel("channel", "POSE");
+        } catch (const ConfigError& e) {
+            return std::string(e.what());
+        }
+    };
+    CHECK(name("") == "POSE");
+    CHECK(name("channel = \"POINTS.front\"") == "POINTS.front");
+    CHECK(name("channel = \"SAMPLE_pose_t-2\"") == "SAMPLE_pose_t-2");
+    const std::string longest(63, 'A');
+    CHECK(name("channel = \"" + longest + "\"") == longest);
+    CHECK(name("channel = \"\"") == "d.toml: channel: must not be empty");
+    CHECK(name("channel = \"" + longest + "B\"") == "d.toml: channel: is 64 characters, more than LCM's 63");
+    CHECK(name("channel = \".*\"") == "d.toml: channel: '.*' is not a channel name (letters, digits, '_', '-', '.')");
+    CHECK(name("channel = \"POINTS[12]\"") ==
+          "d.toml: channel: 'POINTS[12]' is not a channel name (letters, digits, '_', '-', '.')");
+    // A newline or control character is never quoted: the error stays one line.
+    CHECK(name("channel = \"A\\nB\"") ==
+          "d.toml: channel: a channel name is letters, digits, '_', '-' and '.' (found a space or control character)");
+    CHECK(name("channel = \"A B\"").find("found a space") != std::string::npos);
+    // 5 MB of name: refused by its length, and the message does not repeat it.
+    CHECK(name("channel = \"" + std::string(5'000'000, 'X') + "\"") ==
+          "d.toml: channel: is 5000000 characters, more than LCM's 63");
+}
+
+TEST_CASE("channel regexes to subscribe with: compile for the live bus and the replay, bounded")
+{
+    const auto regex = [](const std::string& value) {
+        try {
+            Config c = Config::parse("points = \"" + value + "\"", "t.toml");
+            return c.get_channel_regex("points", "POINTS.*");
+        } catch (const ConfigError& e) {
+            return std::string(e.what());
+        }
+    };
+    CHECK(regex("POINTS.*") == "POINTS.*");
+    CHECK(regex("POINTS\\\\.(front|rear)") == "POINTS\\.(front|rear)");
+    CHECK(regex("GPS_FIX") == "GPS_FIX");
+    CHECK(regex("") == "t.toml: points: must not be empty");
+    CHECK(regex("([") == "t.toml: points: '([' is not a regex: Unmatched [, [^, [:, [., or [=");
+    CHECK(regex("IMU(").find("t.toml: points: 'IMU(' is not a regex: ") == 0);
+    CHECK(regex("*IMU").find("t.toml: points: '*IMU' is not a regex") == 0);
+    CHECK(regex("a{99999}") == "t.toml: points: 'a{99999}': no {n,m} in a channel regex");
+    // What would make glibc's regcomp take gigabytes (found by fuzz_config): stacked and
+    // deeply nested repetitions. Brackets and escapes hold plain characters.
+    CHECK(regex("M" + std::string(30, '+')) ==
+          "t.toml: points: 'M" + std::string(30, '+') + "': no quantifier on a quantifier in a channel regex");
+    CHECK(regex("A+?").find("no quantifier on a quantifier") != std::string::npos);
+    CHECK(regex("((((((M)+)+)+)+)+)+").find("groups nested more than 4 deep") != std::string::npos);
+    CHECK(regex("((((M)+)+)+)+") == "((((M)+)+)+)+");
+    CHECK(regex("[(+*]+X\\\\++") == "[(+*]+X\\++");
+    CHECK(regex("[]A]+_[^]B]*") == "[]A]+_[^]B]*");
+    CHECK(regex("A*B+C?(D|E)*") == "A*B+C?(D|E)*");
+    // A back reference overflowed std::regex's parser (found by fuzz_config); \d is a digit
+    // to one compiler and a 'd' to the other.
+    CHECK(regex("(A)\\\\3333333333333333333").find("an escape in a channel regex is for punctuation only") !=
+          std::string::npos);
+    CHECK(regex("A\\\\d").find("not \\d") != std::string::npos);
+    CHECK(regex("A B") == "t.toml: points: a channel regex is printable characters without spaces");
+    CHECK(regex(std::string(256, 'A')) == "t.toml: points: is 256 characters, more than the 255 a channel regex may have");
+    CHECK(regex(std::string(255, 'A')) == std::string(255, 'A'));
 }
 
 TEST_CASE("a file on disk loads, and the effective config prints as TOML with defaults")

@@ -8,6 +8,8 @@
 //   auto device = cfg.get_string("device", "/dev/ttyUSB0");
 //   auto baud = cfg.get_int("baud", 500000, {9600, 19200, 38400, 500000});
 //   auto height = cfg.get_double("sensor_height_m", 0.87, 0.0, 5.0);
+//   auto out = cfg.get_channel("channel", "LMS_SCAN");            // a name to publish on
+//   auto in = cfg.get_channel_regex("points_channel", "POINTS.*"); // a pattern to subscribe with
 //   auto sensor = cfg.section("mount");   // a [mount] table, same rules inside
 //   for (auto& box : cfg.tables("box")) { ...; box.finish(); }   // [[box]] tables
 //   cfg.finish();
@@ -38,8 +40,11 @@ private:
 class Config
 {
 public:
-    // Reads and parses path. A missing file or a TOML syntax error throws ConfigError
-    // (key "-" for syntax errors, with line and column in why).
+    // The largest config file load() reads; a larger one is refused unread.
+    static constexpr std::size_t kMaxFileBytes = 1 << 20;
+    // Reads and parses path. Throws ConfigError (key "-") for anything but a readable regular
+    // file of at most kMaxFileBytes (a directory, FIFO, device or socket is refused without
+    // being opened, so a FIFO cannot block) and for a TOML syntax error (line and column in why).
     static Config load(const std::string& path);
     // Parses text as if read from a file called name (for tests and built-in defaults).
     static Config parse(const std::string& text, const std::string& name = "<string>");
@@ -64,6 +69,21 @@ public:
     std::vector<double> get_doubles(const std::string& key, const std::vector<double>& def, std::size_t n,
                                     double min, double max);
     std::vector<std::string> get_strings(const std::string& key, const std::vector<std::string>& def);
+    // An LCM channel to publish on: 1..kMaxChannelChars of letters, digits, '_', '-' and '.'
+    // (no other regex character: subscribers match names with regexes).
+    std::string get_channel(const std::string& key, const std::string& def);
+    // An LCM channel regex to subscribe with: 1..kMaxChannelRegexChars printable characters, no
+    // {n,m} repetition, compiling both as the live bus (anchored POSIX extended) and the log
+    // replay (std::regex) use it.
+    std::string get_channel_regex(const std::string& key, const std::string& def);
+    // LCM's limit on a channel name (LCM_MAX_CHANNEL_NAME_LENGTH): liblcm refuses to publish
+    // on a longer one.
+    static constexpr std::size_t kMaxChannelChars = 63;
+    static constexpr std::size_t kMaxChannelRegexChars = 255;
+    // Why name is not a channel to publish on, or empty when it is one.
+    static std::string channel_name_problem(const std::string& name);
+    // Why pattern is not a channel regex to subscribe with, or empty when it is one.
+    static std::string channel_regex_problem(const std::string& pattern);
     bool has(const std::string& key) const;
     // A sub-table [name]; its keys are reported as "name.key". Missing table = all defaults.
     Config section(const std::string& name);

@@ -29,6 +29,10 @@ private:
     std::vector<int64_t> latencies_;
 };
 
+// utime + offset_us rounded to the microsecond, saturated at the int64 limits; utime itself
+// for a non-finite offset (a log may hold any scan header).
+int64_t shifted_utime(int64_t utime, double offset_us);
+
 // The p-th percentile (0-100, nearest rank) of values; 0 when empty.
 int64_t percentile(std::vector<int64_t> values, double p);
 
