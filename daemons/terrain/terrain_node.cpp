@@ -207,7 +207,9 @@ std::optional<terrain::MapState> read_saved_map(const std::string& path, const t
             return state;
         }
         break;
-    case io::ReadResult::refused: break;
+    case io::ReadResult::unreadable:
+    case io::ReadResult::not_a_file:
+    case io::ReadResult::too_large: break;
     }
     spdlog::warn("map_file {}: refused ({}); starting with an empty map", path, why);
     return std::nullopt;

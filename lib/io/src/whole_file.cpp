@@ -51,43 +51,70 @@ bool write_file_atomically(const std::string& path, const void* data, std::size_
     return true;
 }
 
+namespace {
+
+// Why a file of this mode is not a file to read, or nullptr for a regular file.
+const char* not_a_file(mode_t mode)
+{
+    if (S_ISREG(mode)) return nullptr;
+    if (S_ISDIR(mode)) return "is a directory, not a file";
+    if (S_ISFIFO(mode)) return "is a FIFO, not a file";
+    if (S_ISCHR(mode)) return "is a character device, not a file";
+    if (S_ISBLK(mode)) return "is a block device, not a file";
+    if (S_ISSOCK(mode)) return "is a socket, not a file";
+    return "is not a regular file";
+}
+
+}  // namespace
+
 ReadResult read_regular_file(const std::string& path, std::size_t max_bytes, std::vector<uint8_t>& bytes,
                              std::string& why)
 {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0) {
-        const int err = errno;
+    bytes.clear();
+    const auto failed = [&why](ReadResult r, int err) {
         why = std::strerror(err);
-        return err == ENOENT ? ReadResult::missing : ReadResult::refused;
-    }
+        return r;
+    };
     struct stat st{};
-    ReadResult result = ReadResult::refused;
-    if (::fstat(fd, &st) != 0) {
-        why = std::strerror(errno);
-    } else if (!S_ISREG(st.st_mode)) {
-        why = S_ISDIR(st.st_mode) ? "a directory, not a regular file" : "not a regular file";
-    } else if (static_cast<uint64_t>(st.st_size) > max_bytes) {
-        why = std::to_string(st.st_size) + " bytes, more than " + std::to_string(max_bytes);
-    } else {
-        bytes.resize(static_cast<std::size_t>(st.st_size));
-        std::size_t done = 0;
-        while (done < bytes.size()) {
-            const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) break;
-            done += static_cast<std::size_t>(n);
-        }
-        // A file that changed size while read is read again next time, not half-used.
-        uint8_t extra = 0;
-        if (done == bytes.size() && ::read(fd, &extra, 1) == 0) {
-            result = ReadResult::ok;
-        } else {
-            why = "changed while read";
-            bytes.clear();
-        }
+    if (::stat(path.c_str(), &st) != 0) return failed(errno == ENOENT ? ReadResult::missing : ReadResult::unreadable, errno);
+    if (const char* what = not_a_file(st.st_mode)) {
+        why = what;
+        return ReadResult::not_a_file;
     }
-    ::close(fd);
-    return result;
+    const auto too_large = [&](std::string what) {
+        why = std::move(what);
+        bytes.clear();
+        return ReadResult::too_large;
+    };
+    if (static_cast<uint64_t>(st.st_size) > max_bytes) return too_large("is " + std::to_string(st.st_size) + " bytes, more than " + std::to_string(max_bytes));
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0) return failed(errno == ENOENT ? ReadResult::missing : ReadResult::unreadable, errno);
+    struct Closer
+    {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    // What was swapped in between stat() and open() is refused too.
+    if (::fstat(fd, &st) != 0) return failed(ReadResult::unreadable, errno);
+    if (const char* what = not_a_file(st.st_mode)) {
+        why = what;
+        return ReadResult::not_a_file;
+    }
+    bytes.reserve(static_cast<std::size_t>(st.st_size));
+    uint8_t buf[16384];
+    for (;;) {
+        const ssize_t n = ::read(fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int err = errno;
+            bytes.clear();
+            return failed(ReadResult::unreadable, err);
+        }
+        if (n == 0) break;
+        bytes.insert(bytes.end(), buf, buf + n);
+        if (bytes.size() > max_bytes) return too_large("has more than " + std::to_string(max_bytes) + " bytes");
+    }
+    return ReadResult::ok;
 }
 
 }  // namespace ugv::io

@@ -1,12 +1,8 @@
 #include "ugv/runtime/config.hpp"
 
-#include <fcntl.h>
 #include <regex.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <regex>
@@ -14,6 +10,8 @@
 #include <sstream>
 
 #include <toml++/toml.h>
+
+#include "ugv/io/whole_file.hpp"
 
 namespace ugv::runtime {
 
@@ -55,44 +53,6 @@ std::string fmt_double(double d)
     s << d;
     return s.str();
 }
-
-// Why a file of this mode is not a config file, or nullptr for a regular file.
-const char* not_a_file(mode_t mode)
-{
-    if (S_ISREG(mode)) return nullptr;
-    if (S_ISDIR(mode)) return "is a directory, not a file";
-    if (S_ISFIFO(mode)) return "is a FIFO, not a file";
-    if (S_ISCHR(mode)) return "is a character device, not a file";
-    if (S_ISBLK(mode)) return "is a block device, not a file";
-    if (S_ISSOCK(mode)) return "is a socket, not a file";
-    return "is not a regular file";
-}
-
-std::string too_large(const std::string& size)
-{
-    return "is " + size + " bytes, more than the " + std::to_string(Config::kMaxFileBytes) + " a config file may have";
-}
-
-std::string too_large()
-{
-    return "has more than the " + std::to_string(Config::kMaxFileBytes) + " bytes a config file may have";
-}
-
-class Fd
-{
-public:
-    explicit Fd(int fd) : fd_(fd) {}
-    ~Fd()
-    {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Fd(const Fd&) = delete;
-    Fd& operator=(const Fd&) = delete;
-    int get() const { return fd_; }
-
-private:
-    int fd_;
-};
 
 // Printable, and a character a channel name or pattern may hold in the journal's one line.
 bool printable(char c) { return c > ' ' && c < 0x7f; }
@@ -204,32 +164,16 @@ Config Config::parse(const std::string& text, const std::string& name)
 
 Config Config::load(const std::string& path)
 {
-    const auto cannot = [&path](const char* what) {
-        return ConfigError(path, "-", std::string("cannot read the file: ") + what);
-    };
-    // stat() first: a FIFO or a device is refused before open() could block on it or act on
-    // the device; the fstat() after open() refuses what was swapped in between.
-    struct stat st{};
-    if (::stat(path.c_str(), &st) != 0) throw cannot(std::strerror(errno));
-    if (const char* why = not_a_file(st.st_mode)) throw ConfigError(path, "-", why);
-    if (static_cast<uintmax_t>(st.st_size) > kMaxFileBytes) throw ConfigError(path, "-", too_large(std::to_string(st.st_size)));
-    Fd fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
-    if (fd.get() < 0) throw cannot(std::strerror(errno));
-    if (::fstat(fd.get(), &st) != 0) throw cannot(std::strerror(errno));
-    if (const char* why = not_a_file(st.st_mode)) throw ConfigError(path, "-", why);
-    // The size a regular file reports is not a bound (/proc files say 0, a file may grow):
-    // read one byte past the limit at most.
-    std::string text;
-    char buf[16384];
-    for (;;) {
-        const ssize_t n = ::read(fd.get(), buf, sizeof buf);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) throw cannot(std::strerror(errno));
-        if (n == 0) break;
-        text.append(buf, static_cast<std::size_t>(n));
-        if (text.size() > kMaxFileBytes) throw ConfigError(path, "-", too_large());
+    std::vector<uint8_t> bytes;
+    std::string why;
+    switch (io::read_regular_file(path, kMaxFileBytes, bytes, why)) {
+    case io::ReadResult::ok: break;
+    case io::ReadResult::missing:
+    case io::ReadResult::unreadable: throw ConfigError(path, "-", "cannot read the file: " + why);
+    case io::ReadResult::not_a_file: throw ConfigError(path, "-", why);
+    case io::ReadResult::too_large: throw ConfigError(path, "-", why + " (the most a config file may have)");
     }
-    return parse(text, path);
+    return parse(std::string(bytes.begin(), bytes.end()), path);
 }
 
 Config Config::empty(const std::string& name) { return parse("", name); }

@@ -51,21 +51,25 @@ TEST_CASE("whole file: what is not a small regular file is refused unread")
     std::string why;
     CHECK(ugv::io::read_regular_file((dir / "absent").string(), 100, bytes, why) == ReadResult::missing);
 
-    CHECK(ugv::io::read_regular_file(dir.string(), 100, bytes, why) == ReadResult::refused);
-    CHECK(why.find("directory") != std::string::npos);
+    CHECK(ugv::io::read_regular_file(dir.string(), 100, bytes, why) == ReadResult::not_a_file);
+    CHECK(why == "is a directory, not a file");
 
     // A FIFO without a writer: refused at once, not waited on.
     const std::string fifo = (dir / "fifo").string();
     REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
-    CHECK(ugv::io::read_regular_file(fifo, 100, bytes, why) == ReadResult::refused);
-    CHECK(why == "not a regular file");
+    CHECK(ugv::io::read_regular_file(fifo, 100, bytes, why) == ReadResult::not_a_file);
+    CHECK(why == "is a FIFO, not a file");
 
-    CHECK(ugv::io::read_regular_file("/dev/zero", 100, bytes, why) == ReadResult::refused);
+    CHECK(ugv::io::read_regular_file("/dev/zero", 100, bytes, why) == ReadResult::not_a_file);
+    CHECK(why == "is a character device, not a file");
+    // A regular file whose size says nothing (0) is read only to the bound.
+    CHECK(ugv::io::read_regular_file("/proc/self/maps", 10, bytes, why) == ReadResult::too_large);
+    CHECK(why == "has more than 10 bytes");
 
     const std::string big = (dir / "big").string();
     std::ofstream(big) << std::string(101, 'x');
-    CHECK(ugv::io::read_regular_file(big, 100, bytes, why) == ReadResult::refused);
-    CHECK(why == "101 bytes, more than 100");
+    CHECK(ugv::io::read_regular_file(big, 100, bytes, why) == ReadResult::too_large);
+    CHECK(why == "is 101 bytes, more than 100");
     CHECK(bytes.empty());
     CHECK(ugv::io::read_regular_file(big, 101, bytes, why) == ReadResult::ok);
     CHECK(bytes.size() == 101);

@@ -90,7 +90,7 @@ TEST_CASE("only a regular file of at most 1 MB is a config: the rest is refused 
     // A regular file that cannot be read (or that reports a size of 0 and never ends).
     CHECK(error("/proc/self/mem") == "/proc/self/mem: -: cannot read the file: Input/output error");
     ugv::test::write_file(dir / "big.toml", std::string(Config::kMaxFileBytes + 1, '#'));
-    CHECK(error(dir / "big.toml") == dir / "big.toml" + ": -: is 1048577 bytes, more than the 1048576 a config file may have");
+    CHECK(error(dir / "big.toml") == dir / "big.toml" + ": -: is 1048577 bytes, more than 1048576 (the most a config file may have)");
     // Exactly the limit is fine: a comment, then one key.
     ugv::test::write_file(dir / "full.toml", std::string(Config::kMaxFileBytes - 10, '#') + "\nbaud = 1\n");
     Config full = Config::load(dir / "full.toml");

@@ -13,10 +13,12 @@ namespace ugv::io {
 // Writes PATH.tmp, fsyncs it, renames it over path and fsyncs the folder.
 bool write_file_atomically(const std::string& path, const void* data, std::size_t size, std::string& why);
 
-enum class ReadResult { ok, missing, refused };
-// Reads path whole if it is a regular file of at most max_bytes; why says "not a regular
-// file", "N bytes, more than M", or the system's error. The check is made on the opened file
-// (opened non-blocking), so a FIFO is refused without waiting for a writer.
+enum class ReadResult { ok, missing, unreadable, not_a_file, too_large };
+// Reads path whole if it is a regular file of at most max_bytes. The type is checked before
+// the file is opened (a FIFO or a device is never opened) and again on the opened file; the
+// size a file reports is no bound (/proc files say 0), so reading stops one byte past
+// max_bytes. `why` completes "PATH ...": "is a FIFO, not a file", "is N bytes, more than M",
+// or the system's error for missing and unreadable.
 ReadResult read_regular_file(const std::string& path, std::size_t max_bytes, std::vector<uint8_t>& bytes,
                              std::string& why);
 
