@@ -7,9 +7,9 @@
 
 #include "nodscan_messages.hpp"
 #include "ugv/bus/typed.hpp"
+#include "ugv/daemon/input_stamps.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
-#include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::nodscan_daemon {
 namespace {
@@ -110,49 +110,32 @@ int run(daemon::Daemon& d, const NodscanConfig& config)
 {
     // Flowing: POINTS published (one cloud per scan that had servo angles).
     d.declare_output(config.channel, 2'000'000);
-    bool stamps_refused = false;  // every message of an input refused (set below)
     bool any_published = false;
-    NodscanNode node(config, [&d, &config, &stamps_refused, &any_published](const point_cloud_t& msg) {
-        if (!bus::publish(d.out(), config.channel, msg)) return;
-        d.mark_output();
-        if (!any_published && !stamps_refused) d.ready();
-        any_published = true;
-    });
-    // A servo sample older than the history is of no use, nor a scan whose angles are gone.
-    runtime::StampGate stamps({.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.servo_history_us});
+    // While every message of one input is refused: DEGRADED, saying which (no POINTS can
+    // follow); RUNNING again once one is taken and POINTS flow. A servo sample older than the
+    // history is of no use, nor a scan whose angles are gone.
+    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.servo_history_us},
+                               [&] {
+                                   if (any_published) d.ready();
+                               });
     const int servo_input = stamps.add_input(config.servo_channel);
     const int scan_input = stamps.add_input(config.scan_channel);
-    const auto sync_counters = [&] {
-        runtime::set_all(d.counters(), node.counters());
-        runtime::set_all(d.counters(), stamps.counters());
-    };
+    NodscanNode node(config, [&d, &config, &stamps, &any_published](const point_cloud_t& msg) {
+        if (!bus::publish(d.out(), config.channel, msg)) return;
+        d.mark_output();
+        if (!any_published && !stamps.refusing()) d.ready();
+        any_published = true;
+    });
+    const auto sync_counters = [&] { runtime::set_all(d.counters(), node.counters()); };
     sync_counters();  // every counter is listed from the first status message on
-    // While every message of one input is refused: DEGRADED, saying which (no POINTS can
-    // follow); RUNNING again once one is taken and POINTS flow.
-    const auto stamp_ok = [&](int input, int64_t utime) {
-        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
-        switch (stamps.take_change()) {
-        case runtime::StampChange::rejecting:
-            stamps_refused = true;
-            d.set_state(daemon::State::degraded, stamps.rejecting());
-            break;
-        case runtime::StampChange::cleared:
-            stamps_refused = false;
-            if (any_published) d.ready();
-            break;
-        case runtime::StampChange::none: break;
-        }
-        if (!ok) sync_counters();
-        return ok;
-    };
     bus::subscribe<servo_state_t>(d.bus(), config.servo_channel,
                                   [&](const std::string&, const servo_state_t& m, int64_t) {
-                                      if (!stamp_ok(servo_input, m.utime)) return;
+                                      if (!stamps.accept(servo_input, m.utime)) return;
                                       node.on_servo(m);
                                       sync_counters();
                                   });
     bus::subscribe<laser_scan_t>(d.bus(), config.scan_channel, [&](const std::string&, const laser_scan_t& m, int64_t) {
-        if (!stamp_ok(scan_input, m.utime)) return;
+        if (!stamps.accept(scan_input, m.utime)) return;
         node.on_scan(m);
         sync_counters();
     });

@@ -4,9 +4,9 @@
 
 #include "pose_messages.hpp"
 #include "ugv/bus/typed.hpp"
+#include "ugv/daemon/input_stamps.hpp"
 #include "ugv/estimation/pose_estimator.hpp"
 #include "ugv/runtime/counters.hpp"
-#include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::pose_daemon {
 namespace {
@@ -26,24 +26,30 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
     // Flowing: POSE published (on message time, so it stops when the inputs stop).
     d.declare_output(cfg.channel, 2'000'000);
     estimation::PoseEstimator estimator(cfg.estimator);
-    runtime::StampGate stamps({.max_ahead_us = cfg.max_stamp_ahead_us, .max_age_us = cfg.max_stamp_age_us});
-    const int fix_input = stamps.add_input(cfg.gps_fix_channel);
-    const int velocity_input = stamps.add_input(cfg.gps_velocity_channel);
-    const int imu_input = stamps.add_input(cfg.imu_channel);
     runtime::set_all(d.counters(), estimator.counters());  // listed from the first status message on
-    runtime::set_all(d.counters(), stamps.counters());
 
     int64_t seq = 0;
     bool first_pose = true;
     estimation::PoseStatus last_status = estimation::PoseStatus::initializing;
     std::string pose_why;  // the pose's own reason for DEGRADED ("" = OK)
+    // An input stamped too far from the bus clock never reaches the estimator. While every
+    // message of one input is refused the daemon is DEGRADED, saying which; when one is taken
+    // again, the pose's own state is back.
+    daemon::InputStamps stamps(d, {.max_ahead_us = cfg.max_stamp_ahead_us, .max_age_us = cfg.max_stamp_age_us}, [&] {
+        if (first_pose) return;
+        d.set_state(pose_why.empty() ? daemon::State::running : daemon::State::degraded, pose_why);
+        d.notify_status(pose_why.empty() ? std::string("OK") : "DEGRADED: " + pose_why);
+    });
+    const int fix_input = stamps.add_input(cfg.gps_fix_channel);
+    const int velocity_input = stamps.add_input(cfg.gps_velocity_channel);
+    const int imu_input = stamps.add_input(cfg.imu_channel);
     const auto publish_poses = [&] {
         for (const estimation::PoseEstimate& p : estimator.take_poses()) {
             bus::publish(d.out(), cfg.channel, to_message(p, seq++));
             if (first_pose) {
                 d.ready();  // READY=1 and RUNNING; the pose's own status follows
                 first_pose = false;
-                if (!stamps.rejecting().empty()) d.set_state(daemon::State::degraded, stamps.rejecting());
+                if (stamps.refusing()) d.set_state(daemon::State::degraded, stamps.reason());
             }
             if (p.status != last_status) {
                 // DEGRADED keeps the systemd watchdog fed (the daemon is dead-reckoning, and a
@@ -51,7 +57,7 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
                 // pose_t.status, last_error and the STATUS= line.
                 last_status = p.status;
                 pose_why = degraded_reason(p);
-                if (stamps.rejecting().empty()) {  // else refused inputs are the reason shown
+                if (!stamps.refusing()) {  // else refused inputs are the reason shown
                     d.set_state(pose_why.empty() ? daemon::State::running : daemon::State::degraded, pose_why);
                     d.notify_status(pose_why.empty() ? std::string("OK") : "DEGRADED: " + pose_why);
                 }
@@ -60,41 +66,20 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
         }
         runtime::set_all(d.counters(), estimator.counters());
     };
-    // An input stamped too far from the bus clock never reaches the estimator. While every
-    // message of one input is refused the daemon is DEGRADED, saying which; when one is taken
-    // again, the pose's own state is back.
-    const auto stamp_ok = [&](int input, int64_t utime) {
-        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
-        switch (stamps.take_change()) {
-        case runtime::StampChange::rejecting:
-            d.set_state(daemon::State::degraded, stamps.rejecting());
-            d.notify_status("DEGRADED: " + stamps.rejecting());
-            break;
-        case runtime::StampChange::cleared:
-            if (!first_pose) {
-                d.set_state(pose_why.empty() ? daemon::State::running : daemon::State::degraded, pose_why);
-                d.notify_status(pose_why.empty() ? std::string("OK") : "DEGRADED: " + pose_why);
-            }
-            break;
-        case runtime::StampChange::none: break;
-        }
-        if (!ok) runtime::set_all(d.counters(), stamps.counters());
-        return ok;
-    };
 
     bus::subscribe<gps_fix_t>(d.bus(), cfg.gps_fix_channel, [&](const std::string&, const gps_fix_t& m, int64_t) {
-        if (!stamp_ok(fix_input, m.utime)) return;
+        if (!stamps.accept(fix_input, m.utime)) return;
         estimator.add(to_fix(m));
         publish_poses();
     });
     bus::subscribe<gps_velocity_t>(d.bus(), cfg.gps_velocity_channel,
                                    [&](const std::string&, const gps_velocity_t& m, int64_t) {
-                                       if (!stamp_ok(velocity_input, m.utime)) return;
+                                       if (!stamps.accept(velocity_input, m.utime)) return;
                                        estimator.add(to_velocity(m));
                                        publish_poses();
                                    });
     bus::subscribe<imu_t>(d.bus(), cfg.imu_channel, [&](const std::string&, const imu_t& m, int64_t) {
-        if (!stamp_ok(imu_input, m.utime)) return;
+        if (!stamps.accept(imu_input, m.utime)) return;
         estimator.add(to_imu(m));
         publish_poses();
     });

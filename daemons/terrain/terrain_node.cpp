@@ -10,11 +10,11 @@
 
 #include "terrain_messages.hpp"
 #include "ugv/bus/typed.hpp"
+#include "ugv/daemon/input_stamps.hpp"
 #include "ugv/io/clock.hpp"
 #include "ugv/io/whole_file.hpp"
 #include "ugv/runtime/counters.hpp"
 #include "ugv/runtime/rate_limited_log.hpp"
-#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/terrain/map_state.hpp"
 #include "ugv/terrain/simd.hpp"
 
@@ -222,14 +222,23 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
     // Flowing: maps whose content new points updated (a map republished as it was is not).
     d.declare_output("maps updated by new points on " + config.map_channel, config.health_timeout_us);
     TerrainNode* self = nullptr;
-    bool stamps_refused = false;  // every message of an input refused (set below)
     bool any_published = false;
+    // While every message of one input is refused: DEGRADED, saying which, even though maps
+    // still go out (they no longer take in what the vehicle sees, or no longer move with it);
+    // RUNNING again once one is taken. A pose older than the pose history is of no use, nor a
+    // cloud whose poses are gone.
+    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us},
+                               [&] {
+                                   if (any_published) d.ready();
+                               });
+    const int pose_input = stamps.add_input(config.pose_channel);
+    const int points_input = stamps.add_input(config.points_channel);
     TerrainNode node(
         config,
-        [&d, &config, &self, &stamps_refused, &any_published](const terrain_map_t& msg) {
+        [&d, &config, &self, &stamps, &any_published](const terrain_map_t& msg) {
             if (!bus::publish(d.out(), config.map_channel, msg)) return;
             if (self && self->map_updated()) d.mark_output();
-            if (!any_published && !stamps_refused) d.ready();
+            if (!any_published && !stamps.refusing()) d.ready();
             any_published = true;
         },
         [] { return io::monotonic_us(); });
@@ -242,16 +251,11 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
     if (keep_map) {
         if (auto saved = read_saved_map(config.map_file, config.map)) node.restore_at_first_pose(std::move(*saved));
     }
-    // A pose older than the pose history is of no use, nor a cloud whose poses are gone.
-    runtime::StampGate stamps({.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us});
-    const int pose_input = stamps.add_input(config.pose_channel);
-    const int points_input = stamps.add_input(config.points_channel);
     bool restore_logged = false;
     const auto sync_counters = [&] {
         runtime::set_all(d.counters(), node.mapper().counters());
         runtime::set_all(d.counters(), node.counters());
         runtime::set_all(d.counters(), file_counters);
-        runtime::set_all(d.counters(), stamps.counters());
         const auto outcome = node.mapper().restore_outcome();
         if (restore_logged || outcome == terrain::RestoreOutcome::none || outcome == terrain::RestoreOutcome::pending)
             return;
@@ -285,33 +289,14 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
         sync_counters();
     };
     sync_counters();  // every counter is listed from the first status message on
-    // While every message of one input is refused: DEGRADED, saying which, even though maps
-    // still go out (they no longer take in what the vehicle sees, or no longer move with it);
-    // RUNNING again once one is taken.
-    const auto stamp_ok = [&](int input, int64_t utime) {
-        const bool ok = stamps.accept(input, utime, d.bus().now_utime());
-        switch (stamps.take_change()) {
-        case runtime::StampChange::rejecting:
-            stamps_refused = true;
-            d.set_state(daemon::State::degraded, stamps.rejecting());
-            break;
-        case runtime::StampChange::cleared:
-            stamps_refused = false;
-            if (any_published) d.ready();
-            break;
-        case runtime::StampChange::none: break;
-        }
-        if (!ok) sync_counters();
-        return ok;
-    };
     bus::subscribe<pose_t>(d.bus(), config.pose_channel, [&](const std::string&, const pose_t& m, int64_t) {
-        if (!stamp_ok(pose_input, m.utime)) return;
+        if (!stamps.accept(pose_input, m.utime)) return;
         node.on_pose(m);
         sync_counters();
     });
     bus::subscribe<point_cloud_t>(d.bus(), config.points_channel,
                                   [&](const std::string&, const point_cloud_t& m, int64_t) {
-                                      if (!stamp_ok(points_input, m.utime)) return;
+                                      if (!stamps.accept(points_input, m.utime)) return;
                                       node.on_points(m);
                                       sync_counters();
                                   });
