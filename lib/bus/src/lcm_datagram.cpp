@@ -10,6 +10,9 @@ uint32_t be32(const uint8_t* p)
 {
     return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
+// Per sender, buffers up to this size are kept between messages.
+constexpr std::size_t kKeepBytes = 16u << 10;
+
 uint16_t be16(const uint8_t* p) { return static_cast<uint16_t>((p[0] << 8) | p[1]); }
 
 // The channel at p (at most `size` bytes, NUL-terminated within liblcm's limit); its length
@@ -97,11 +100,17 @@ void LcmReassembler::release(InProgress& s, uint64_t* counter)
     s.active = false;
     s.charged = 0;
     s.payload_bytes = 0;
-    // Freed, not kept: an idle sender holds no memory.
-    s.have = {};
-    s.pieces = {};
-    s.bytes = {};
-    s.channel = {};
+    // Small buffers are kept for the sender's next message: garbage that begins a message per
+    // datagram then allocates nothing, instead of interleaving small blocks with the large
+    // ones of real messages (heap fragmentation, a few MB). Large ones are freed.
+    s.have.clear();
+    s.pieces.clear();
+    s.bytes.clear();
+    s.channel.clear();
+    // (swap: assigning {} to a vector keeps its capacity)
+    if (s.bytes.capacity() > kKeepBytes) std::vector<uint8_t>().swap(s.bytes);
+    if (s.pieces.capacity() > kKeepBytes / sizeof(Piece)) std::vector<Piece>().swap(s.pieces);
+    if (s.have.capacity() > kKeepBytes * 8) std::vector<bool>().swap(s.have);
 }
 
 bool LcmReassembler::make_room(std::size_t more, const InProgress* keep)
