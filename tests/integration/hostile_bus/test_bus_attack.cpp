@@ -356,3 +356,31 @@ TEST_CASE("ugv-terrain under the fragment-header attack: maps and STATUS do not 
     terrain.signal(SIGTERM);
     CHECK(terrain.wait_exit(10.0) == 0);
 }
+
+TEST_CASE("bus_max_message_bytes reaches the daemon's bus, and out of range it is a config error")
+{
+    test::TempDir dir;
+    const uint16_t port = 7713;
+    const std::string url = test::lcm_url(port);
+    test::write_file(dir / "small.toml", "bus_max_message_bytes = 65536\n");
+    Observer o(url, {}, "STATUS_TERRAIN");
+    test::Process terrain({test::bin("ugv-terrain"), "--config", dir / "small.toml", "--lcm-url", url},
+                          dir / "terrain.out", dir / "terrain.err");
+    REQUIRE(o.fresh_status(15.0));
+    CHECK(o.counter("bus_oversized_messages") == 0);
+    // 100 kB on POSE: liblcm sends 2 fragments, each refused (the message is over 64 KiB).
+    const std::vector<uint8_t> big(100'000, 1);
+    REQUIRE(o.bus->publish("POSE", big.data(), big.size()));
+    REQUIRE(o.fresh_status(3.0));
+    REQUIRE(o.fresh_status(3.0));
+    CHECK(o.counter("bus_oversized_messages") == 2);
+    CHECK(o.counter("bus_decode_failures") == 0);  // never reached the handler
+    terrain.signal(SIGTERM);
+    CHECK(terrain.wait_exit(10.0) == 0);
+
+    test::write_file(dir / "tiny.toml", "bus_max_message_bytes = 1000\n");
+    CHECK(test::run({test::bin("ugv-terrain"), "--config", dir / "tiny.toml", "--lcm-url", url}, dir / "o.txt",
+                    dir / "e.txt", 10.0) == 2);
+    CHECK(test::read_file(dir / "e.txt") ==
+          dir / "tiny.toml" + ": bus_max_message_bytes: 1000 is out of range [65536, 67108864]\n");
+}
