@@ -10,6 +10,9 @@ uint32_t be32(const uint8_t* p)
 {
     return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
+// Per sender, buffers up to this size are kept between messages.
+constexpr std::size_t kKeepBytes = 16u << 10;
+
 uint16_t be16(const uint8_t* p) { return static_cast<uint16_t>((p[0] << 8) | p[1]); }
 
 // The channel at p (at most `size` bytes, NUL-terminated within liblcm's limit); its length
@@ -28,6 +31,7 @@ std::size_t channel_span(const uint8_t* p, std::size_t size)
 LcmDatagram parse_lcm_datagram(const uint8_t* data, std::size_t size)
 {
     LcmDatagram d;
+    d.size = size;
     if (size < 8) return d;
     const uint32_t magic = be32(data);
     d.sequence = be32(data + 4);
@@ -63,80 +67,140 @@ LcmDatagram parse_lcm_datagram(const uint8_t* data, std::size_t size)
     return d;
 }
 
+LcmReassembler::LcmReassembler(ReassemblyLimits limits) : limits_(limits)
+{
+    in_progress_.reserve(limits_.max_senders);
+}
+
 LcmReassembler::InProgress& LcmReassembler::slot_for(uint64_t sender)
 {
-    for (auto& s : in_progress_)
+    InProgress* idle = nullptr;
+    InProgress* lru = nullptr;
+    for (auto& s : in_progress_) {
         if (s.sender == sender) return s;
-    if (in_progress_.size() < kMaxSenders) {
+        if (!s.active && !idle) idle = &s;
+        if (!lru || s.last_use < lru->last_use) lru = &s;
+    }
+    if (in_progress_.size() < limits_.max_senders) {
         in_progress_.emplace_back();
         in_progress_.back().sender = sender;
         return in_progress_.back();
     }
-    auto& oldest = *std::min_element(in_progress_.begin(), in_progress_.end(),
-                                     [](const InProgress& a, const InProgress& b) { return a.last_use < b.last_use; });
-    if (oldest.fragment_count != 0) ++counters_.incomplete_messages;
-    bytes_in_progress_ -= oldest.message.payload.size();
-    oldest = InProgress{};
-    oldest.sender = sender;
-    return oldest;
+    // A sender with nothing in progress gives up its slot first; else the least recently used.
+    InProgress& s = idle ? *idle : *lru;
+    if (s.active) release(s, &counters_.evicted_messages);
+    s.sender = sender;
+    return s;
 }
 
-void LcmReassembler::make_room(std::size_t bytes, const InProgress* keep)
+void LcmReassembler::release(InProgress& s, uint64_t* counter)
 {
-    while (bytes_in_progress_ + bytes > kMaxBytesInProgress) {
+    if (counter) ++*counter;
+    bytes_held_ -= s.charged;
+    s.active = false;
+    s.charged = 0;
+    s.payload_bytes = 0;
+    // Small buffers are kept for the sender's next message: garbage that begins a message per
+    // datagram then allocates nothing, instead of interleaving small blocks with the large
+    // ones of real messages (heap fragmentation, a few MB). Large ones are freed.
+    s.have.clear();
+    s.pieces.clear();
+    s.bytes.clear();
+    s.channel.clear();
+    // (swap: assigning {} to a vector keeps its capacity)
+    if (s.bytes.capacity() > kKeepBytes) std::vector<uint8_t>().swap(s.bytes);
+    if (s.pieces.capacity() > kKeepBytes / sizeof(Piece)) std::vector<Piece>().swap(s.pieces);
+    if (s.have.capacity() > kKeepBytes * 8) std::vector<bool>().swap(s.have);
+}
+
+bool LcmReassembler::make_room(std::size_t more, const InProgress* keep)
+{
+    const std::size_t limit = limits_.bytes_held_limit();
+    while (bytes_held_ + more > limit) {
         InProgress* lru = nullptr;
         for (auto& s : in_progress_)
-            if (&s != keep && s.fragment_count != 0 && (!lru || s.last_use < lru->last_use)) lru = &s;
-        if (!lru) return;
-        ++counters_.incomplete_messages;
-        bytes_in_progress_ -= lru->message.payload.size();
-        const uint64_t sender = lru->sender;
-        *lru = InProgress{};
-        lru->sender = sender;
+            if (&s != keep && s.active && (!lru || s.last_use < lru->last_use)) lru = &s;
+        if (!lru) return false;
+        release(*lru, &counters_.evicted_messages);
+    }
+    return true;
+}
+
+void LcmReassembler::expire(int64_t now_utime)
+{
+    for (auto& s : in_progress_) {
+        if (!s.active) continue;
+        // Either way: a clock stepped back must not keep a message forever.
+        const int64_t age = now_utime - s.started_utime;
+        if (age > limits_.max_age_us || age < -limits_.max_age_us) release(s, &counters_.expired_messages);
     }
 }
 
-bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, Message& done)
+bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t now_utime, Message& done)
 {
+    bytes_received_ += f.size;
+    expire(now_utime);
     if (f.kind != LcmDatagram::Kind::fragment) {
         ++counters_.invalid_datagrams;
         return false;
     }
+    if (f.message_size > limits_.max_message_bytes) {
+        ++counters_.oversized_messages;  // refused before anything is held
+        return false;
+    }
     InProgress& s = slot_for(sender);
     s.last_use = ++clock_;
-    const bool same_message = s.fragment_count != 0 && s.sequence == f.sequence;
-    if (same_message && (s.fragment_count != f.fragment_count || s.message.payload.size() != f.message_size)) {
+    const bool same_message = s.active && s.sequence == f.sequence;
+    if (same_message && (s.fragment_count != f.fragment_count || s.message_size != f.message_size)) {
         ++counters_.invalid_datagrams;  // contradicts the fragments before it
         return false;
     }
     if (!same_message) {
-        if (s.fragment_count != 0) ++counters_.incomplete_messages;
-        bytes_in_progress_ -= s.message.payload.size();
-        s.message.payload = {};
-        make_room(f.message_size, &s);
-        bytes_in_progress_ += f.message_size;
+        if (s.active) release(s, &counters_.incomplete_messages);
+        s.active = true;
         s.sequence = f.sequence;
+        s.message_size = f.message_size;
         s.fragment_count = f.fragment_count;
         s.received = 0;
-        s.bytes = 0;
+        s.started_utime = now_utime;
         s.have.assign(f.fragment_count, false);
-        s.message.channel.clear();
-        s.message.payload.assign(f.message_size, 0);
     }
     if (s.have[f.fragment_no]) return false;  // a duplicate
+    if (s.payload_bytes + f.payload_size > s.message_size) {
+        ++counters_.invalid_datagrams;  // more bytes than the message has
+        return false;
+    }
+    const std::size_t cost = f.payload_size + kLcmFragmentHeaderBytes;
+    if (s.charged + cost > limits_.sender_limit()) {
+        release(s, &counters_.oversized_messages);  // a message in countless tiny fragments
+        return false;
+    }
+    if (!make_room(cost, &s)) {
+        release(s, &counters_.evicted_messages);
+        return false;
+    }
     s.have[f.fragment_no] = true;
     ++s.received;
-    s.bytes += f.payload_size;
-    if (f.fragment_no == 0) s.message.channel.assign(f.channel);
-    if (f.payload_size > 0) std::memcpy(s.message.payload.data() + f.offset, f.payload, f.payload_size);
+    s.payload_bytes += f.payload_size;
+    s.charged += cost;
+    bytes_held_ += cost;
+    if (f.fragment_no == 0) s.channel.assign(f.channel);
+    s.pieces.push_back({f.offset, static_cast<uint32_t>(f.payload_size)});
+    s.bytes.insert(s.bytes.end(), f.payload, f.payload + f.payload_size);
     if (s.received < s.fragment_count) return false;
-    const bool whole = s.bytes == s.message.payload.size() && !s.message.channel.empty();
-    bytes_in_progress_ -= s.message.payload.size();
-    if (whole) done = std::move(s.message);
-    else ++counters_.invalid_datagrams;  // fragments that do not tile their message
-    s.message = Message{};
-    s.fragment_count = 0;  // nothing in progress
-    s.have.clear();
+    const bool whole = s.payload_bytes == s.message_size && !s.channel.empty();
+    if (whole) {
+        done.channel = std::move(s.channel);
+        done.payload.assign(s.message_size, 0);
+        std::size_t at = 0;
+        for (const Piece& p : s.pieces) {
+            if (p.size > 0) std::memcpy(done.payload.data() + p.offset, s.bytes.data() + at, p.size);
+            at += p.size;
+        }
+    } else {
+        ++counters_.invalid_datagrams;  // fragments that do not tile their message
+    }
+    release(s, nullptr);
     return whole;
 }
 

@@ -44,8 +44,10 @@ private:
 class LiveBus final : public Bus
 {
 public:
-    explicit LiveBus(std::string url) : url_(std::move(url)), udpm_(detail::parse_udpm_url(url_))
+    LiveBus(std::string url, const LiveOptions& options)
+        : url_(std::move(url)), udpm_(detail::parse_udpm_url(url_))
     {
+        limits_.max_message_bytes = options.max_message_bytes;
         lcm_ = lcm_create(url_.c_str());
         if (!lcm_) throw BusError("LCM cannot be created for '" + url_ + "' (bad URL, or no multicast route?)");
     }
@@ -66,7 +68,7 @@ public:
             if (udpm_->transmit_only) throw BusError("cannot subscribe on '" + url_ + "': transmit_only=true");
             auto pattern = std::make_unique<ChannelPattern>(channel_regex);
             // The first subscription joins the group: a bus that only publishes receives nothing.
-            if (!receiver_) receiver_ = std::make_unique<detail::UdpmReceiver>(*udpm_);
+            if (!receiver_) receiver_ = std::make_unique<detail::UdpmReceiver>(*udpm_, limits_);
             subs_.push_back(Sub{this, std::move(handler), std::move(pattern)});
             routes_.clear();
             return;
@@ -89,13 +91,20 @@ public:
         }
         const int64_t deadline = io::monotonic_us() + int64_t{timeout_ms} * 1000;
         for (;;) {
-            const std::size_t handed = receiver_->drain(
+            // One bounded drain per round: the caller's timers run between rounds.
+            const detail::DrainResult r = receiver_->drain(
                 [this](std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime) {
                     return dispatch(channel, data, size, recv_utime);
                 });
-            counters_.incomplete_messages = receiver_->reassembly().incomplete_messages;
-            counters_.invalid_datagrams = receiver_->reassembly().invalid_datagrams;
-            if (handed > 0) return HandleResult::handled;
+            const detail::ReassemblyCounters& c = receiver_->reassembly();
+            counters_.incomplete_messages = c.incomplete_messages;
+            counters_.invalid_datagrams = c.invalid_datagrams;
+            counters_.oversized_messages = c.oversized_messages;
+            counters_.expired_messages = c.expired_messages;
+            counters_.evicted_messages = c.evicted_messages;
+            counters_.reassembly_bytes = receiver_->reassembly_bytes_held();
+            counters_.receive_budget_stops = receiver_->counters().budget_stops;
+            if (r.handed > 0 || r.budget_spent) return HandleResult::handled;
             const int64_t left_us = deadline - io::monotonic_us();
             if (timeout_ms >= 0 && left_us <= 0) return HandleResult::timeout;
             pollfd p{receiver_->fd(), POLLIN, 0};
@@ -163,6 +172,7 @@ private:
     std::string url_;
     std::optional<detail::UdpmUrl> udpm_;
     lcm_t* lcm_ = nullptr;
+    detail::ReassemblyLimits limits_;
     std::unique_ptr<detail::UdpmReceiver> receiver_;
     std::list<Sub> subs_;  // stable addresses: liblcm and routes_ hold pointers to them
     std::unordered_map<std::string, std::vector<Sub*>> routes_;
@@ -171,6 +181,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Bus> open_live(const std::string& url) { return std::make_unique<LiveBus>(url); }
+std::unique_ptr<Bus> open_live(const std::string& url, const LiveOptions& options)
+{
+    return std::make_unique<LiveBus>(url, options);
+}
 
 }  // namespace ugv::bus

@@ -6,6 +6,7 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -35,8 +36,8 @@ int64_t receive_time_us(msghdr& h)
 
 }  // namespace
 
-UdpmReceiver::UdpmReceiver(const UdpmUrl& url)
-    : buffers_(kBatch * kDatagramBytes), control_(kBatch * kControlBytes)
+UdpmReceiver::UdpmReceiver(const UdpmUrl& url, ReassemblyLimits limits)
+    : buffers_(kBatch * kDatagramBytes), control_(kBatch * kControlBytes), reassembler_(limits)
 {
     const std::string where = "udpm " + url.group + ":" + std::to_string(url.port);
     in_addr group{};
@@ -83,15 +84,24 @@ UdpmReceiver::~UdpmReceiver()
     if (fd_ >= 0) ::close(fd_);
 }
 
-std::size_t UdpmReceiver::drain(const Sink& sink)
+DrainResult UdpmReceiver::drain(const Sink& sink, DrainBudget budget)
 {
-    std::size_t handed = 0;
+    DrainResult result;
     mmsghdr msgs[kBatch];
     iovec iov[kBatch];
     sockaddr_in from[kBatch];
     LcmReassembler::Message whole;
+    // Unfinished messages age even while no fragment comes.
+    reassembler_.expire(io::now_utime());
+    std::size_t datagrams = 0, bytes = 0;
     for (;;) {
-        for (std::size_t k = 0; k < kBatch; ++k) {
+        if (datagrams >= budget.datagrams || bytes >= budget.bytes) {
+            result.budget_spent = true;
+            ++counters_.budget_stops;
+            break;
+        }
+        const std::size_t want = std::min(kBatch, budget.datagrams - datagrams);
+        for (std::size_t k = 0; k < want; ++k) {
             iov[k] = {buffers_.data() + k * kDatagramBytes, kDatagramBytes};
             msgs[k] = {};
             msgs[k].msg_hdr.msg_iov = &iov[k];
@@ -101,26 +111,28 @@ std::size_t UdpmReceiver::drain(const Sink& sink)
             msgs[k].msg_hdr.msg_control = control_.data() + k * kControlBytes;
             msgs[k].msg_hdr.msg_controllen = kControlBytes;
         }
-        const int n = ::recvmmsg(fd_, msgs, kBatch, MSG_DONTWAIT, nullptr);
+        const int n = ::recvmmsg(fd_, msgs, static_cast<unsigned>(want), MSG_DONTWAIT, nullptr);
         if (n <= 0) break;  // EAGAIN: all read (any other error: nothing to read either)
         for (int k = 0; k < n; ++k) {
             ++counters_.datagrams;
+            ++datagrams;
+            bytes += msgs[k].msg_len;
             const uint8_t* data = buffers_.data() + static_cast<std::size_t>(k) * kDatagramBytes;
             const LcmDatagram d = parse_lcm_datagram(data, msgs[k].msg_len);
             const int64_t recv_utime = receive_time_us(msgs[k].msg_hdr);
             if (d.kind == LcmDatagram::Kind::short_message) {
                 ++counters_.messages;
-                handed += sink(d.channel, d.payload, d.payload_size, recv_utime) ? 1 : 0;
+                result.handed += sink(d.channel, d.payload, d.payload_size, recv_utime) ? 1 : 0;
                 continue;
             }
             const uint64_t sender = (uint64_t{from[k].sin_addr.s_addr} << 16) | from[k].sin_port;
-            if (!reassembler_.add_fragment(sender, d, whole)) continue;
+            if (!reassembler_.add_fragment(sender, d, recv_utime, whole)) continue;
             ++counters_.messages;
-            handed += sink(whole.channel, whole.payload.data(), whole.payload.size(), recv_utime) ? 1 : 0;
+            result.handed += sink(whole.channel, whole.payload.data(), whole.payload.size(), recv_utime) ? 1 : 0;
         }
-        if (static_cast<std::size_t>(n) < kBatch) break;
+        if (static_cast<std::size_t>(n) < want) break;
     }
-    return handed;
+    return result;
 }
 
 }  // namespace ugv::bus::detail

@@ -136,7 +136,10 @@ Daemon::~Daemon() = default;
 void Daemon::start()
 {
     runtime::RealtimeOptions rt;
+    bus::LiveOptions live;
     try {
+        live.max_message_bytes = static_cast<std::size_t>(config_->get_int(
+            "bus_max_message_bytes", static_cast<int64_t>(bus::kDefaultMaxMessageBytes), 65536, 64 << 20));
         runtime::Config r = config_->section("realtime");
         rt.lock_memory = r.get_bool("lock_memory", false);
         rt.fifo_priority = static_cast<int>(r.get_int("fifo_priority", 0, 0, 99));
@@ -158,7 +161,7 @@ void Daemon::start()
             out_log_ = bus::open_log_writer(out_path_, [in] { return in->now_utime(); });
             out_ = out_log_.get();
         } else {
-            in_ = bus::open_live(lcm_url_.empty() ? bus::default_url() : lcm_url_);
+            in_ = bus::open_live(lcm_url_.empty() ? bus::default_url() : lcm_url_, live);
             out_ = in_.get();  // one LCM instance both ways
         }
     } catch (const bus::BusError& e) {
@@ -326,7 +329,10 @@ int Daemon::run()
     const bool batched = bus_batch_us_ > 0 && in_->fd() >= 0;
     if (batched)
         add_timer(bus_batch_us_, [this] {
-            for (int k = 0; k < 10'000 && in_->handle(0) == bus::HandleResult::handled; ++k) {
+            // Each handle() is a bounded read; under a flood, stop after a quarter of the
+            // period so the daemon's own timers keep theirs.
+            const int64_t until = io::monotonic_us() + std::max<int64_t>(bus_batch_us_ / 4, 1000);
+            for (int k = 0; k < 10'000 && in_->handle(0) == bus::HandleResult::handled && io::monotonic_us() < until; ++k) {
             }
         });
     publish_status();

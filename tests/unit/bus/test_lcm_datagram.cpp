@@ -52,6 +52,8 @@ std::vector<uint8_t> fragment(uint32_t seq, uint32_t size, uint32_t offset, uint
 
 LcmDatagram parse(const std::vector<uint8_t>& b) { return parse_lcm_datagram(b.data(), b.size()); }
 
+constexpr int64_t kNow = 1'700'000'000'000'000;
+
 std::string text(const LcmReassembler::Message& m) { return std::string(m.payload.begin(), m.payload.end()); }
 
 }  // namespace
@@ -124,27 +126,27 @@ TEST_CASE("lcm reassembly: fragments in any order make the message once; duplica
 {
     LcmReassembler r;
     LcmReassembler::Message m;
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 6, 2, 3, "", "ghi")), m));
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 0, 0, 3, "MAP", "abc")), m));
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 0, 0, 3, "MAP", "abc")), m));  // again
-    REQUIRE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 6, 2, 3, "", "ghi")), kNow, m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 0, 0, 3, "MAP", "abc")), kNow, m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 0, 0, 3, "MAP", "abc")), kNow, m));  // again
+    REQUIRE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), kNow, m));
     CHECK(m.channel == "MAP");
     CHECK(text(m) == "abcdefghi");
     CHECK(r.counters().incomplete_messages == 0);
     CHECK(r.counters().invalid_datagrams == 0);
     // A late duplicate of a finished message starts a new one, which never completes.
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), kNow, m));
 }
 
 TEST_CASE("lcm reassembly: a new message from a sender abandons its unfinished one, and it is counted")
 {
     LcmReassembler r;
     LcmReassembler::Message m;
-    CHECK_FALSE(r.add_fragment(7, parse(fragment(1, 6, 0, 0, 2, "A", "abc")), m));
+    CHECK_FALSE(r.add_fragment(7, parse(fragment(1, 6, 0, 0, 2, "A", "abc")), kNow, m));
     // Fragment 1 of message 1 was lost; message 2 begins.
-    CHECK_FALSE(r.add_fragment(7, parse(fragment(2, 6, 0, 0, 2, "A", "ABC")), m));
+    CHECK_FALSE(r.add_fragment(7, parse(fragment(2, 6, 0, 0, 2, "A", "ABC")), kNow, m));
     CHECK(r.counters().incomplete_messages == 1);
-    REQUIRE(r.add_fragment(7, parse(fragment(2, 6, 3, 1, 2, "", "DEF")), m));
+    REQUIRE(r.add_fragment(7, parse(fragment(2, 6, 3, 1, 2, "", "DEF")), kNow, m));
     CHECK(text(m) == "ABCDEF");
 }
 
@@ -152,12 +154,12 @@ TEST_CASE("lcm reassembly: two senders interleaved are kept apart")
 {
     LcmReassembler r;
     LcmReassembler::Message m;
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(5, 4, 0, 0, 2, "ONE", "ab")), m));
-    CHECK_FALSE(r.add_fragment(2, parse(fragment(5, 4, 0, 0, 2, "TWO", "AB")), m));
-    REQUIRE(r.add_fragment(2, parse(fragment(5, 4, 2, 1, 2, "", "CD")), m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(5, 4, 0, 0, 2, "ONE", "ab")), kNow, m));
+    CHECK_FALSE(r.add_fragment(2, parse(fragment(5, 4, 0, 0, 2, "TWO", "AB")), kNow, m));
+    REQUIRE(r.add_fragment(2, parse(fragment(5, 4, 2, 1, 2, "", "CD")), kNow, m));
     CHECK(m.channel == "TWO");
     CHECK(text(m) == "ABCD");
-    REQUIRE(r.add_fragment(1, parse(fragment(5, 4, 2, 1, 2, "", "cd")), m));
+    REQUIRE(r.add_fragment(1, parse(fragment(5, 4, 2, 1, 2, "", "cd")), kNow, m));
     CHECK(m.channel == "ONE");
     CHECK(text(m) == "abcd");
     CHECK(r.counters().incomplete_messages == 0);
@@ -167,34 +169,123 @@ TEST_CASE("lcm reassembly: fragments that contradict their message or do not til
 {
     LcmReassembler r;
     LcmReassembler::Message m;
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 6, 0, 0, 2, "A", "abc")), m));
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 8, 3, 1, 2, "", "def")), m));  // another size
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 6, 0, 0, 2, "A", "abc")), kNow, m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 8, 3, 1, 2, "", "def")), kNow, m));  // another size
     CHECK(r.counters().invalid_datagrams == 1);
     // All fragments there, but only 5 of the 6 bytes: not handed out.
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 6, 3, 1, 2, "", "de")), m));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 6, 3, 1, 2, "", "de")), kNow, m));
     CHECK(r.counters().invalid_datagrams == 2);
     // Not LCM at all.
     const std::vector<uint8_t> junk{1, 2, 3, 4, 5, 6, 7, 8, 9};
-    CHECK_FALSE(r.add_fragment(1, parse(junk), m));
+    CHECK_FALSE(r.add_fragment(1, parse(junk), kNow, m));
     CHECK(r.counters().invalid_datagrams == 3);
 }
 
-TEST_CASE("lcm reassembly: datagrams claiming big messages cannot make it hold more than its budget")
+TEST_CASE("lcm reassembly: a claimed size is never allocated; what it holds never exceeds what it received")
 {
-    // Three senders each begin a 40 MiB message (as garbage could, 20 bytes each): the third
-    // pushes the total past 96 MiB, so the least recently used unfinished one is dropped.
-    LcmReassembler r;
+    // The attack of issue 23: headers of 20 bytes claiming a large message, from many senders.
+    LcmReassembler r;  // defaults: 1 MiB per message
     LcmReassembler::Message m;
-    const uint32_t big = 40u << 20;
-    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, big, 0, 0, 1000, "A", "x")), m));
-    CHECK_FALSE(r.add_fragment(2, parse(fragment(1, big, 0, 0, 1000, "B", "x")), m));
-    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
-    CHECK_FALSE(r.add_fragment(3, parse(fragment(1, big, 0, 0, 1000, "C", "x")), m));
-    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
-    CHECK(r.counters().incomplete_messages == 1);
-    // A small message still goes through, and finishing it frees its bytes.
-    CHECK_FALSE(r.add_fragment(4, parse(fragment(1, 4, 0, 0, 2, "D", "ab")), m));
-    REQUIRE(r.add_fragment(4, parse(fragment(1, 4, 2, 1, 2, "", "cd")), m));
-    CHECK(text(m) == "abcd");
-    CHECK(r.bytes_in_progress() == 2 * std::size_t{big});
+    const uint32_t big = 1000u << 10;  // within the limit
+    for (uint64_t sender = 0; sender < 64; ++sender) {
+        CHECK_FALSE(r.add_fragment(sender, parse(fragment(1, big, 65000, 1, 100, "", "")), kNow, m));
+        CHECK(r.bytes_held() <= r.bytes_received());
+    }
+    // 32 senders in progress, each charged its header only; the 32 least recent evicted.
+    CHECK(r.bytes_held() == 32 * kLcmFragmentHeaderBytes);
+    CHECK(r.bytes_received() == 64 * 20);
+    CHECK(r.counters().evicted_messages == 32);
+    // A fragment with bytes is charged its bytes (its sender takes the least recent slot).
+    CHECK_FALSE(r.add_fragment(99, parse(fragment(1, big, 0, 0, 100, "MAP", std::string(1000, 'x'))), kNow, m));
+    CHECK(r.counters().evicted_messages == 33);
+    CHECK(r.bytes_held() == 31 * kLcmFragmentHeaderBytes + 1000 + kLcmFragmentHeaderBytes);
+    CHECK(r.bytes_held() <= r.bytes_received());
+}
+
+TEST_CASE("lcm reassembly: a message over max_message_bytes is refused and counted, one at the limit completes")
+{
+    ReassemblyLimits limits;
+    limits.max_message_bytes = 100'000;
+    LcmReassembler r(limits);
+    LcmReassembler::Message m;
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, 100'001, 0, 0, 2, "MAP", "abc")), kNow, m));
+    CHECK(r.counters().oversized_messages == 1);
+    CHECK(r.bytes_held() == 0);
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(2, 65'000'000, 0, 0, 1000, "MAP", "abc")), kNow, m));  // the 65 MB claim
+    CHECK(r.counters().oversized_messages == 2);
+    const std::string half(50'000, 'h');
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 100'000, 0, 0, 2, "MAP", half)), kNow, m));
+    REQUIRE(r.add_fragment(1, parse(fragment(3, 100'000, 50'000, 1, 2, "", half)), kNow, m));
+    CHECK(m.payload.size() == 100'000);
+    CHECK(r.bytes_held() == 0);
+    // A message within the limit, sent in so many tiny fragments that their charge outgrows
+    // the sender's share (max + 1/8): dropped, counted oversized.
+    limits.max_message_bytes = 65536;
+    LcmReassembler tiny(limits);
+    bool refused = false;
+    for (uint16_t k = 0; k < 5000 && !refused; ++k) {
+        tiny.add_fragment(5, parse(fragment(1, 65536, k, k, 65535, k == 0 ? "T" : "", k == 0 ? "" : "x")), kNow, m);
+        refused = tiny.counters().oversized_messages == 1;
+        CHECK(tiny.bytes_held() <= limits.sender_limit());
+    }
+    CHECK(refused);
+    CHECK(tiny.bytes_held() == 0);
+}
+
+TEST_CASE("lcm reassembly: an unfinished message expires after max_age_us, counted")
+{
+    ReassemblyLimits limits;
+    limits.max_age_us = 1'000'000;
+    LcmReassembler r(limits);
+    LcmReassembler::Message m;
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, 6, 0, 0, 2, "A", "abc")), kNow, m));
+    r.expire(kNow + 1'000'000);  // exactly the age: kept
+    CHECK(r.counters().expired_messages == 0);
+    // Its second fragment comes late: the message expired, the fragment begins a new one.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, 6, 3, 1, 2, "", "def")), kNow + 1'000'001, m));
+    CHECK(r.counters().expired_messages == 1);
+    CHECK(r.counters().incomplete_messages == 0);
+    r.expire(kNow + 2'100'000);
+    CHECK(r.counters().expired_messages == 2);
+    CHECK(r.bytes_held() == 0);
+    // A clock stepped back expires too, rather than keeping a message forever.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(2, 6, 0, 0, 2, "A", "abc")), kNow, m));
+    r.expire(kNow - 5'000'000);
+    CHECK(r.counters().expired_messages == 3);
+    // Fragments within the age complete as ever.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(3, 6, 0, 0, 2, "A", "abc")), kNow, m));
+    REQUIRE(r.add_fragment(1, parse(fragment(3, 6, 3, 1, 2, "", "def")), kNow + 999'000, m));
+    CHECK(text(m) == "abcdef");
+}
+
+TEST_CASE("lcm reassembly: at the memory bound the least recently used message is dropped, counted")
+{
+    ReassemblyLimits limits;
+    limits.max_message_bytes = 100'000;
+    limits.max_bytes_held = 170'000;
+    LcmReassembler r(limits);
+    LcmReassembler::Message m;
+    const std::string chunk(60'000, 'c');
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, 100'000, 0, 0, 2, "A", chunk)), kNow, m));
+    CHECK_FALSE(r.add_fragment(2, parse(fragment(1, 100'000, 0, 0, 2, "B", chunk)), kNow, m));
+    CHECK(r.bytes_held() == 2 * (60'000 + kLcmFragmentHeaderBytes));
+    // Sender 1 is the least recently used: C's fragment pushes it out.
+    CHECK_FALSE(r.add_fragment(3, parse(fragment(1, 100'000, 0, 0, 2, "C", chunk)), kNow, m));
+    CHECK(r.counters().evicted_messages == 1);
+    CHECK(r.bytes_held() == 2 * (60'000 + kLcmFragmentHeaderBytes));
+    CHECK(r.bytes_held() <= limits.bytes_held_limit());
+    // B and C still complete (B's last fragment fits beside C); A's last fragment alone
+    // begins a message that cannot complete.
+    const std::string rest(40'000, 'r');
+    REQUIRE(r.add_fragment(2, parse(fragment(1, 100'000, 60'000, 1, 2, "", rest)), kNow, m));
+    CHECK(m.channel == "B");
+    REQUIRE(r.add_fragment(3, parse(fragment(1, 100'000, 60'000, 1, 2, "", rest)), kNow, m));
+    CHECK(m.channel == "C");
+    CHECK(m.payload.size() == 100'000);
+    CHECK(m.payload[59'999] == 'c');
+    CHECK(m.payload[60'000] == 'r');
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(1, 100'000, 60'000, 1, 2, "", rest)), kNow, m));
+    CHECK(r.counters().incomplete_messages == 0);
+    CHECK(r.counters().evicted_messages == 1);
+    CHECK(r.bytes_held() == 40'000 + kLcmFragmentHeaderBytes);
 }

@@ -165,3 +165,39 @@ TEST_CASE("udpm receiver: asks for a 2 MiB receive buffer (or the URL's) and get
     UdpmReceiver asked(*parse_udpm_url(ugv::test::lcm_url(7644) + "&recv_buf_size=100000"));
     CHECK(asked.receive_buffer_bytes() == std::min<long>(100000, rmem_max));
 }
+
+TEST_CASE("udpm receiver: one drain reads at most its budget; the rest waits for the next")
+{
+    const uint16_t port = 7710;
+    UdpmReceiver r(*parse_udpm_url(ugv::test::lcm_url(port)));
+    // 300 fragment headers claiming 65 MB each (refused: over max_message_bytes).
+    std::vector<std::vector<uint8_t>> attack;
+    for (uint32_t k = 0; k < 300; ++k) attack.push_back(lc03(k, 65'000'000, 65'000, 1, 1000, "", 0));
+    send_raw(port, attack);
+    const auto wanted = [](std::string_view, const uint8_t*, std::size_t, int64_t) { return true; };
+    const DrainResult first = r.drain(wanted, DrainBudget{100, 4u << 20});
+    CHECK(first.budget_spent);
+    CHECK(first.handed == 0);
+    CHECK(r.counters().datagrams == 100);
+    CHECK(r.counters().budget_stops == 1);
+    for (int k = 0; k < 100 && r.counters().datagrams < 300; ++k) {
+        pollfd p{r.fd(), POLLIN, 0};
+        ::poll(&p, 1, 20);
+        r.drain(wanted, DrainBudget{100, 4u << 20});
+    }
+    CHECK(r.counters().datagrams == 300);
+    CHECK(r.reassembly().oversized_messages == 300);
+    CHECK(r.reassembly_bytes_held() == 0);
+    // A byte budget stops it too, checked between reads of up to 8 datagrams: 20 datagrams
+    // of 2 kB on a 1000-byte budget give one read of 8.
+    std::vector<std::vector<uint8_t>> big;
+    for (uint32_t k = 0; k < 20; ++k) big.push_back(lc03(k, 65'000'000, 65'000, 1, 1000, "", 2000));
+    send_raw(port, big);
+    const std::size_t before = r.counters().datagrams;
+    pollfd p{r.fd(), POLLIN, 0};
+    ::poll(&p, 1, 1000);
+    ::usleep(50'000);  // all 20 in the socket (loopback delivers at once; this is slack)
+    const DrainResult one = r.drain(wanted, DrainBudget{100, 1000});
+    CHECK(r.counters().datagrams == before + 8);
+    CHECK(one.budget_spent);
+}

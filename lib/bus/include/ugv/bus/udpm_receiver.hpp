@@ -3,9 +3,11 @@
 // pipe for each message it wants; on a 2-core vehicle computer those wake-ups, not the
 // messages, were most of a subscriber's CPU (docs/performance.md). Here one non-blocking
 // socket joins the group, recvmmsg() takes up to a batch of datagrams per call, and the
-// caller decides how often to drain it. Publishing stays with liblcm.
+// caller decides how often to drain it, and each drain reads a bounded number of datagrams
+// (a flood must not keep the caller from its own work). Publishing stays with liblcm.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string_view>
@@ -20,13 +22,28 @@ struct UdpmReceiverCounters
 {
     uint64_t datagrams = 0;
     uint64_t messages = 0;  // complete messages handed out (wanted or not)
+    uint64_t budget_stops = 0;  // drains that stopped at their budget with more waiting, maybe
+};
+
+// What one drain() reads at most: enough for everything a 4 MiB socket buffer holds of
+// ordinary traffic, little enough to take a millisecond or two.
+struct DrainBudget
+{
+    std::size_t datagrams = 1024;
+    std::size_t bytes = 4u << 20;
+};
+
+struct DrainResult
+{
+    std::size_t handed = 0;  // messages the sink wanted
+    bool budget_spent = false;  // stopped at the budget, not because the socket was empty
 };
 
 class UdpmReceiver
 {
 public:
     // Joins url's group on its port. Throws BusError with one line (the URL and why).
-    explicit UdpmReceiver(const UdpmUrl& url);
+    explicit UdpmReceiver(const UdpmUrl& url, ReassemblyLimits limits = {});
     ~UdpmReceiver();
     UdpmReceiver(const UdpmReceiver&) = delete;
     UdpmReceiver& operator=(const UdpmReceiver&) = delete;
@@ -39,12 +56,13 @@ public:
     // channel, payload, size, the kernel's receive time of the (last) datagram, us since the
     // epoch; returns whether the message was wanted (someone subscribed to its channel).
     using Sink = std::function<bool(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)>;
-    // Reads every datagram already waiting, without blocking, and hands each complete message
-    // to `sink`, in arrival order. Returns how many the sink wanted.
-    std::size_t drain(const Sink& sink);
+    // Reads the datagrams already waiting, without blocking, up to the budget, and hands each
+    // complete message to `sink`, in arrival order.
+    DrainResult drain(const Sink& sink, DrainBudget budget = {});
 
     const UdpmReceiverCounters& counters() const { return counters_; }
     const ReassemblyCounters& reassembly() const { return reassembler_.counters(); }
+    std::size_t reassembly_bytes_held() const { return reassembler_.bytes_held(); }
 
 private:
     int fd_ = -1;
