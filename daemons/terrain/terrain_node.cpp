@@ -26,6 +26,7 @@ namespace {
 // the cloud's end time past any pose (or past int64).
 constexpr float kMaxCloudSpanS = 10.0f;
 constexpr std::size_t kRecentClouds = 64;  // per sensor, for duplicates: ~2 s of scans
+constexpr std::size_t kMaxSensors = 16;     // a vehicle has a few lasers
 // Clouds lead the pose by the pose's reorder buffer and a scan (~0.2 s). One stamped far
 // ahead would wait at the head of the queue for a pose that never comes, holding back every
 // cloud behind it, and would push the publishing clock into the future: it is rejected.
@@ -110,7 +111,7 @@ void TerrainNode::on_points(const point_cloud_t& msg)
         ++counters_.clouds_rejected_time;
         return;
     }
-    std::deque<int64_t>& recent = recent_cloud_utimes_[msg.sensor_id];
+    std::deque<int64_t>& recent = recent_clouds_of(msg.sensor_id);
     if (std::find(recent.begin(), recent.end(), msg.utime) != recent.end()) {
         ++counters_.clouds_duplicate;
         return;
@@ -169,6 +170,22 @@ void TerrainNode::fuse_ready(bool all)
         fuse(front);
         waiting_.pop_front();
     }
+}
+
+std::deque<int64_t>& TerrainNode::recent_clouds_of(const std::string& sensor_id)
+{
+    auto it = recent_clouds_.find(sensor_id);
+    if (it == recent_clouds_.end()) {
+        if (recent_clouds_.size() >= kMaxSensors) {
+            recent_clouds_.erase(std::min_element(recent_clouds_.begin(), recent_clouds_.end(), [](const auto& a, const auto& b) {
+                return a.second.last_seen < b.second.last_seen;
+            }));
+            ++counters_.sensors_forgotten;
+        }
+        it = recent_clouds_.emplace(sensor_id, RecentClouds{}).first;
+    }
+    it->second.last_seen = ++clouds_seen_;
+    return it->second.utimes;
 }
 
 void TerrainNode::maybe_publish(int64_t message_time_us)

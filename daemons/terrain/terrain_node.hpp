@@ -31,6 +31,7 @@ struct NodeCounters
     uint64_t poses_rejected_time = 0;    // utime <= 0, or a jump of > 5 s the next pose did not confirm
     uint64_t clouds_duplicate = 0;       // same sensor and utime as that sensor's last cloud
     uint64_t clouds_overflow = 0;        // more than 256 waiting: the oldest fused with what there is
+    uint64_t sensors_forgotten = 0;      // a 17th sensor id: the one heard from longest ago forgotten
     uint64_t maps_published = 0;
     int64_t last_publish_us = 0;         // wall time of the last snapshot + encode + publish
 
@@ -45,6 +46,7 @@ struct NodeCounters
         f("poses_rejected_time", poses_rejected_time);
         f("clouds_duplicate", clouds_duplicate);
         f("clouds_overflow", clouds_overflow);
+        f("sensors_forgotten", sensors_forgotten);
         f("maps_published", maps_published);
         f("publish_time_us", last_publish_us);
     }
@@ -97,8 +99,16 @@ private:
     NodeCounters counters_;
     std::deque<point_cloud_t> waiting_;
     // The times of each sensor's recent clouds (by sensor_id, newest last): a cloud whose
-    // time is among them is a duplicate, even when it comes back after newer ones.
-    std::map<std::string, std::deque<int64_t>> recent_cloud_utimes_;
+    // time is among them is a duplicate, even when it comes back after newer ones. At most
+    // kMaxSensors ids are kept, so clouds with random ids cannot grow it.
+    struct RecentClouds
+    {
+        std::deque<int64_t> utimes;
+        uint64_t last_seen = 0;
+    };
+    std::deque<int64_t>& recent_clouds_of(const std::string& sensor_id);
+    std::map<std::string, RecentClouds> recent_clouds_;
+    uint64_t clouds_seen_ = 0;
     pose_t last_pose_{};
     bool have_pose_ = false;
     std::optional<pose_t> held_jump_;  // a pose > 5 s after the newest, until the next one

@@ -171,3 +171,22 @@ TEST_CASE("TerrainNode: clouds that all carry one time wait in a queue bounded b
     CHECK(node.counters().clouds_overflow == 1000 - 256);
     CHECK(node.mapper().counters().rejected_after_history == 4 * (1000 - 256));
 }
+
+TEST_CASE("TerrainNode: clouds with ever new sensor ids keep at most 16 ids for duplicates")
+{
+    terrain_daemon::TerrainNode node({}, [](const terrain_map_t&) {}, [] { return int64_t{0}; });
+    const int64_t t0 = 1'700'000'000'000'000;
+    node.on_pose(pose_at(t0));
+    node.on_points(cloud_at(t0 + 10'000, "front", 1));
+    for (int k = 0; k < 1000; ++k) {
+        node.on_points(cloud_at(t0 + 20'000 + k, "s" + std::to_string(k), 1));
+        // The vehicle's own laser, heard all along, is never the one forgotten.
+        if (k % 10 == 0) node.on_points(cloud_at(t0 + 30'000 + k, "front", 1));
+    }
+    CHECK(node.counters().sensors_forgotten == 1000 + 1 - 16);
+    node.on_points(cloud_at(t0 + 30'000 + 990, "front", 1));
+    CHECK(node.counters().clouds_duplicate == 1);
+    // A forgotten id's cloud is no longer known as a duplicate: the bound's price.
+    node.on_points(cloud_at(t0 + 20'000, "s0", 1));
+    CHECK(node.counters().clouds_duplicate == 1);
+}
