@@ -6,13 +6,13 @@
 namespace ugv::bus::detail {
 namespace {
 
+// Per sender, buffers up to this size are kept between messages.
+constexpr std::size_t kKeepBytes = 16u << 10;
+
 uint32_t be32(const uint8_t* p)
 {
     return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
-// Per sender, buffers up to this size are kept between messages.
-constexpr std::size_t kKeepBytes = 16u << 10;
-
 uint16_t be16(const uint8_t* p) { return static_cast<uint16_t>((p[0] << 8) | p[1]); }
 
 // The channel at p (at most `size` bytes, NUL-terminated within liblcm's limit); its length

@@ -31,7 +31,7 @@ int main(int argc, char** argv)
         m.device = "test";
         ugv::bus::publish(d.out(), channel, m);
         ++ticks;
-        if (healthy) d.mark_alive();
+        if (healthy) d.mark_output();
         if (seq == 1) d.ready();
     });
     return d.run();

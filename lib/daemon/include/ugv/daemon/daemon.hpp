@@ -97,8 +97,6 @@ public:
     // The output was published: it flows when two marks came within stall_us of each other,
     // the last within stall_us of now (so one stray message among garbage is not RUNNING).
     void mark_output();
-    void mark_alive() { mark_output(); }  // the older name
-    void set_health_timeout_us(int64_t us) { health_timeout_us_ = us; }
     // READY=1 (once) and the daemon's view RUNNING; the state is RUNNING once output flows.
     void ready();
     // A one-line STATUS= for systemd (also logged at debug level).
