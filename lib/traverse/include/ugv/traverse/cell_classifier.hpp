@@ -1,0 +1,58 @@
+// Per cell of a terrain map: is it traversable, an obstacle, a negative obstacle (ditch,
+// drop-off) or unknown, with a cost and the quantities behind the verdict. No state: the
+// same grid and distances give the same layers.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "ugv/traverse/odometer.hpp"
+#include "ugv/traverse/terrain_grid.hpp"
+
+namespace ugv::traverse {
+
+enum class CellClass : int8_t { unknown = 0, traversable = 1, obstacle = 2, negative_obstacle = 3 };
+
+struct ClassifierConfig
+{
+    double max_step_m = 0.2;          // a step up at least this tall is an obstacle
+    double max_drop_m = 0.2;          // a drop at least this deep is a negative obstacle
+    double step_radius_m = 0.3;       // steps are measured against cells within this of the cell
+    double max_slope_deg = 25;        // a steeper neighbourhood is an obstacle
+    double slope_radius_m = 0.5;      // the plane for the slope is fitted over this radius
+    double max_roughness_m = 0.15;    // a cell's height spread (sd) that costs 1
+    double min_support_samples = 2;   // samples a cell's top (or bottom) needs to count as a step
+    double max_age_s = 60;            // data this old is UNKNOWN (certainty 0)
+    double max_driven_m = 40;         // data seen this many metres of driving ago is UNKNOWN
+};
+
+struct TraversabilityLayers
+{
+    int nx = 0, ny = 0;
+    std::vector<CellClass> cell_class;
+    std::vector<float> cost;         // [0, 1], 1 for obstacles; NaN unknown
+    std::vector<float> step_m;       // step up from the neighbours to this cell's supported top
+    std::vector<float> drop_m;       // drop from the neighbours down to its supported bottom
+    std::vector<float> slope_deg;
+    std::vector<float> roughness_m;  // sqrt(variance)
+    std::vector<float> span_m;       // max - min
+    std::vector<float> certainty;    // [0, 1]
+
+    void reset(int nx, int ny);
+    std::size_t cells() const { return cell_class.size(); }
+};
+
+class CellClassifier
+{
+public:
+    explicit CellClassifier(const ClassifierConfig& config);  // throws std::invalid_argument on a bad config
+    // The grid must pass check_grid; out is resized to it. odometer says how far the vehicle
+    // has driven since each cell's newest sample (the decay of certainty).
+    void classify(const TerrainGrid& grid, const Odometer& odometer, TraversabilityLayers& out) const;
+    const ClassifierConfig& config() const { return config_; }
+
+private:
+    ClassifierConfig config_;
+};
+
+}  // namespace ugv::traverse
