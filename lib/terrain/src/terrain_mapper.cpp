@@ -314,12 +314,28 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
     }
     const detail::CellArrays cells(grid.cells());
     const float z_f = static_cast<float>(z);
+    // The cell the point was measured in (none when it lies off the map's edge).
+    const int own_row = static_cast<int>(std::floor(x * inv_g));
+    const int own_column = static_cast<int>(std::floor((y - static_cast<float>(grid.y_min_m())) * inv_g));
     for (int a = 0; a < fx.count; ++a) {
         for (int b = 0; b < fy.count; ++b) {
-            const uint32_t at = grid.storage_of(grid.physical(fx.first + a, fy.first + b));
+            const int row = fx.first + a, column = fy.first + b;
+            const uint32_t at = grid.storage_of(grid.physical(row, column));
             alignas(16) float sample[4];
             detail::store4(sample, detail::Float4{0.0f, fx.centre[a] * g, fy.centre[b] * g, z_f});
-            cells.add_placed(at, sample, w * fx.fraction[a] * fy.fraction[b], t_ms);
+            const float share = w * fx.fraction[a] * fy.fraction[b];
+            if (row == own_row && column == own_column) {
+                cells.add_placed(at, sample, share, t_ms);
+                continue;
+            }
+            // A share in a neighbour moves its mean by its weight, but its height was not
+            // measured there: it is counted (and dates the cell), not put in the neighbour's
+            // max/min, so a box's top spread beside the box (a large sigma: far range, a poor
+            // yaw) is no ghost obstacle.
+            detail::fuse_point_into(cells.sums[at], sample, share);
+            CellTally& tally = cells.tallies[at];
+            ++tally.count;
+            tally.newest_ms = tally.newest_ms > t_ms ? tally.newest_ms : t_ms;
         }
     }
     ++counters_.points_fused;
@@ -538,7 +554,12 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
         const CellStatistics s = cell_statistics(c, config_.statistics);
         out.mean_z_m[k] = static_cast<float>(s.mean_z_m);
         out.variance_z_m2[k] = static_cast<float>(s.variance_z_m2);
-        out.put(k, t, now_ms);
+        // Spread shares reach a cell's mean but not its extremes (spread_point): the extremes
+        // shown include the mean, so min <= mean <= max holds and a cell holding shares only
+        // is not left without them.
+        CellTally shown = t;
+        shown.extremes.add(out.mean_z_m[k]);
+        out.put(k, shown, now_ms);
     };
     if (history_.empty()) {
         out.pose = Pose{};

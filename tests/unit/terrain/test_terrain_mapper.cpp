@@ -294,6 +294,57 @@ TEST_CASE("section 3.5: spreading conserves total weight")
         if (!std::isnan(s.mean_z_m[k])) CHECK((s.mean_z_m[k] == Approx(2.0f) || s.mean_z_m[k] == Approx(1.0f) || s.mean_z_m[k] == Approx(3.0f)));
 }
 
+TEST_CASE("section 3.5: a spread point's height reaches only its own cell's max (no ghost beside a box)")
+{
+    // The mechanism of the ghosts beside boxes in turns: a box-top point with sigma > G is
+    // spread over the ground cells beside the box; its height must not become their max.
+    for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+        INFO((mode == MapMode::egocentric ? "egocentric" : "world aligned"));
+        MapConfig c;
+        c.mode = mode;
+        c.spread = true;
+        c.spread_max_cells = 2;
+        TerrainMapper m(c);
+        m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+        // Cell (i, j) of the egocentric layout: x = -0.5 + (i + 0.5) G ahead of the body
+        // origin, y = -15 + (j + 0.5) G; the world grid is resampled into the same layout.
+        auto cx = [](int i) { return static_cast<float>(-0.5 + (i + 0.5) * 0.2); };
+        auto cy = [](int j) { return static_cast<float>(-15.0 + (j + 0.5) * 0.2); };
+        Points ground;  // sigma 1 cm: each in its own cell; a 0.5 m box on columns 75-78 of rows 52-54
+        for (int i = 50; i <= 56; ++i)
+            for (int j = 71; j <= 78; ++j) {
+                const bool box = i >= 52 && i <= 54 && j >= 75;
+                for (int k = 0; k < 4; ++k) ground.add(cx(i), cy(j), box ? 0.5f : 0.0f, 1e-4f);
+            }
+        REQUIRE(m.fuse(ground.batch(0)) == 7 * 8 * 4);
+        Points top;  // the box's top 2 cm inside its edge, sigma 0.3 m (far range, a turn's yaw sigma)
+        top.add(cx(53), 0.02f, 0.5f, 0.09f);
+        top.add(cx(60), cy(60), 0.7f, 0.09f);  // alone on unknown ground: a spread-only cell has extremes too
+        REQUIRE(m.fuse(top.batch(0)) == 2);
+        REQUIRE(m.counters().points_spread == 2);
+        MapSnapshot s;
+        m.snapshot(s);
+        auto k = [](int i, int j) { return static_cast<std::size_t>(i * 150 + j); };
+        CHECK(s.max_z_m[k(53, 75)] == Approx(0.5f));  // the point's own cell
+        for (int i = 52; i <= 54; ++i)
+            for (int j = 73; j <= 74; ++j) {
+                INFO("ground cell " << i << ", " << j << " beside the box");
+                CHECK(s.max_z_m[k(i, j)] < 0.01f);
+                CHECK(s.count[k(i, j)] == 5);  // N still counts the spread point in every cell it touches
+            }
+        for (std::size_t q = 0; q < s.mean_z_m.size(); ++q) {
+            INFO("cell " << q);
+            REQUIRE(std::isnan(s.max_z_m[q]) == std::isnan(s.mean_z_m[q]));
+            REQUIRE(std::isnan(s.min_z_m[q]) == std::isnan(s.mean_z_m[q]));
+            if (std::isnan(s.mean_z_m[q])) continue;
+            CHECK(s.min_z_m[q] <= s.mean_z_m[q] + 1e-5f);
+            CHECK(s.mean_z_m[q] <= s.max_z_m[q] + 1e-5f);
+        }
+        CHECK(s.max_z_m[k(60, 60)] == Approx(0.7f));
+        CHECK(s.max_z_m[k(60, 61)] == Approx(0.7f));  // nothing else there: the mean is the point's
+    }
+}
+
 TEST_CASE("spreading conserves total weight at the map's edge and in the world-aligned mode")
 {
     MapConfig c;
