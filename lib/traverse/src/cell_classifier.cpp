@@ -266,6 +266,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     double memo_driven = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
         if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
+        // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
+        // terrain map then shows max = min = mean. Nothing was seen there.
+        if (g.count[k] >= 2 && g.max_z_m[k] == g.min_z_m[k] && g.max_z_m[k] == g.mean_z_m[k]) continue;
         double certainty = 1.0;
         if (have_age && std::isfinite(g.age_s[k])) {
             const float age = g.age_s[k];
