@@ -13,7 +13,8 @@ namespace {
 constexpr int kLegendGap = 16;   // between the map and the legend
 constexpr int kRow = 18;         // legend row height
 constexpr int kSwatchW = 24;
-constexpr int kMaxCells = 4000;  // per side: a bigger map is not one this tool can draw
+constexpr int kMaxCells = 2000;  // per side: a bigger map is not one this tool can draw
+constexpr int kMaxPanelPx = 8000;  // per side: --cell-px is lowered to keep the picture below
 constexpr int kMaxArcs = 1000;
 constexpr int kMaxArcSamples = 100000;
 constexpr int kDashOnPx = 6, kDashPeriodPx = 10;
@@ -72,9 +73,11 @@ void map_point_pixel(const traversability_map_t& m, int cell_px, double mx, doub
     const double far_x = m.origin_x + static_cast<double>(m.nx) * m.resolution;
     const double left_y = m.origin_y + static_cast<double>(m.ny) * m.resolution;
     const double px = (left_y - my) / m.resolution * cell_px, py = (far_x - mx) / m.resolution * cell_px;
-    // Clamped before the conversion: a point far off the map is off the panel all the same.
-    x = kTraverseMargin + static_cast<int>(std::floor(std::clamp(px, -1e6, 1e6)));
-    y = kTraverseMargin + static_cast<int>(std::floor(std::clamp(py, -1e6, 1e6)));
+    // Clamped before the conversion: a point far off the map (or not a number, from an
+    // outline option) is off the panel all the same.
+    auto to_px = [](double v) { return static_cast<int>(std::floor(std::isfinite(v) ? std::clamp(v, -1e6, 1e6) : -1e6)); };
+    x = kTraverseMargin + to_px(px);
+    y = kTraverseMargin + to_px(py);
 }
 
 // Body frame -> map axes: map = R(residual_yaw) body (the map's axes are the body's turned
@@ -83,6 +86,12 @@ void body_pixel(const traversability_map_t& m, int cell_px, double bx, double by
 {
     const double c = std::cos(m.residual_yaw), s = std::sin(m.residual_yaw);
     map_point_pixel(m, cell_px, c * bx - s * by, s * bx + c * by, x, y);
+}
+
+// Samples for a line of n pixels, clamped in double before the conversion.
+int samples(double n)
+{
+    return static_cast<int>(std::clamp(std::ceil(n), 1.0, static_cast<double>(kMaxArcSamples)));
 }
 
 // The body-frame point s_m along an arc from the origin heading +X; the series below 1e-6 rad
@@ -98,7 +107,7 @@ void draw_arc(Image& img, const Panel& p, const traversability_map_t& m, int cel
               int width, bool dashed, Rgb c)
 {
     const double px_per_m = cell_px / static_cast<double>(m.resolution);
-    const int steps = std::clamp(static_cast<int>(std::ceil(s_end * px_per_m * 2.0)), 1, kMaxArcSamples);
+    const int steps = samples(s_end * px_per_m * 2.0);
     for (int k = 0; k <= steps; ++k) {
         const double s = s_end * k / steps;
         if (dashed && std::fmod(s * px_per_m, kDashPeriodPx) >= kDashOnPx) continue;
@@ -119,7 +128,7 @@ void draw_hit(Image& img, const Panel& p, const traversability_map_t& m, const T
     arc_point(curvature, clear_m, bx, by);
     const double px_per_m = o.cell_px / static_cast<double>(m.resolution);
     const double front = std::max(0.0, o.vehicle_front_x_m);
-    const int steps = std::clamp(static_cast<int>(std::ceil(front * px_per_m * 2.0)), 1, kMaxArcSamples);
+    const int steps = samples(front * px_per_m * 2.0);
     int x = 0, y = 0;
     for (int k = 0; k <= steps; ++k) {
         const double d = front * k / steps;
@@ -251,7 +260,7 @@ bool drawable(const traversability_map_t& m)
     const auto n = static_cast<std::size_t>(m.ncells);
     return m.nx > 0 && m.ny > 0 && m.nx <= kMaxCells && m.ny <= kMaxCells &&
            static_cast<int64_t>(m.nx) * m.ny == m.ncells && m.cell_class.size() == n && m.cost.size() == n &&
-           std::isfinite(m.resolution) && m.resolution > 0.0f && std::isfinite(m.origin_x) &&
+           std::isfinite(m.resolution) && m.resolution >= 1e-3f && std::isfinite(m.origin_x) &&
            std::isfinite(m.origin_y) && std::isfinite(m.residual_yaw);
 }
 
@@ -281,9 +290,11 @@ void arc_pixel(const traversability_map_t& m, int cell_px, double curvature, dou
     body_pixel(m, cell_px, bx, by, x, y);
 }
 
-Image render_traverse(const traversability_map_t& m, const candidate_arcs_t* arcs, const TraverseOptions& o)
+Image render_traverse(const traversability_map_t& m, const candidate_arcs_t* arcs, const TraverseOptions& options)
 {
     if (!drawable(m)) return Image(2 * kTraverseMargin + kLegendWidth, 2 * kTraverseMargin + kLegendHeight);
+    TraverseOptions o = options;
+    o.cell_px = std::clamp(o.cell_px, 1, std::max(1, kMaxPanelPx / std::max(m.nx, m.ny)));
     if (arcs && (!drawable(*arcs) || !same_terrain_map(m, *arcs))) arcs = nullptr;
     const int panel_w = m.ny * o.cell_px, panel_h = m.nx * o.cell_px;
     Image img(2 * kTraverseMargin + panel_w + kLegendWidth, 2 * kTraverseMargin + std::max(panel_h, kLegendHeight));

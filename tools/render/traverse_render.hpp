@@ -38,7 +38,8 @@ Rgb traversable_colour(double cost);  // cost in [0, 1]; NaN as 0
 Rgb class_colour(int8_t cell_class, float cost);
 
 // Whether the message can be drawn: sizes agree (ncells = nx * ny, every layer ncells long;
-// narcs and every per-arc array), a positive resolution, finite geometry.
+// narcs and every per-arc array), at most 2000 cells a side, a resolution of at least 1 mm,
+// finite geometry, best in -1 .. narcs - 1, a positive length.
 bool drawable(const traversability_map_t& m);
 bool drawable(const candidate_arcs_t& a);
 // Arcs belong to a map when both were computed from the same terrain map (map_seq, utime).
@@ -52,7 +53,8 @@ void arc_pixel(const traversability_map_t& m, int cell_px, double curvature, dou
 
 // The picture; arcs are drawn only when they are of the same terrain map (else the legend
 // says there are none for it). Width 2 * margin + ny * cell_px + legend width, height the
-// larger of the map's and the legend's plus the margins.
+// larger of the map's and the legend's plus the margins; cell_px is lowered to keep the map
+// within 8000 pixels a side.
 Image render_traverse(const traversability_map_t& m, const candidate_arcs_t* arcs, const TraverseOptions& options);
 
 }  // namespace ugv::render

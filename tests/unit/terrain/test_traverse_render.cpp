@@ -263,8 +263,22 @@ TEST_CASE("traversability picture: messages whose sizes disagree are not drawn")
     m.resolution = NAN;
     CHECK_FALSE(drawable(m));
     m = flat_map();
+    m.resolution = 1e-40f;
+    CHECK_FALSE(drawable(m));
+    m = flat_map();
     candidate_arcs_t a = arcs_for(m);
     CHECK(drawable(a));
+    // Extreme but consistent arcs are drawn within bounds: a huge length, a NaN clear
+    // distance, an infinite curvature (that arc left out).
+    a.length_m = 1e30f;
+    a.clear_distance_m[0] = NAN;
+    a.curvature[1] = INFINITY;
+    a.curvature[2] = 1e30f;
+    CHECK(drawable(a));
+    TraverseOptions huge;
+    huge.cell_px = 20;
+    CHECK(render_traverse(m, &a, huge).width() == 2 * kTraverseMargin + 150 * 20 + kLegendWidth);
+    a = arcs_for(m);
     a.best = 25;
     CHECK_FALSE(drawable(a));
     a = arcs_for(m);
