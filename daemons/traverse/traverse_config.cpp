@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <spdlog/fmt/fmt.h>
+
 #include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::traverse_daemon {
@@ -30,7 +32,7 @@ TraverseConfig read_config(runtime::Config& cfg)
     runtime::Config fp = cfg.section("footprint");
     traverse::Footprint& f = c.analysis.footprint;
     f.rear_x_m = fp.get_double("rear_x_m", f.rear_x_m, -10.0, 0.0);
-    f.front_x_m = fp.get_double("front_x_m", f.front_x_m, 0.0, 10.0);
+    f.front_x_m = fp.get_double("front_x_m", f.front_x_m, 0.1, 10.0);
     f.width_m = fp.get_double("width_m", f.width_m, 0.1, 10.0);
 
     runtime::Config cl = cfg.section("classifier");
@@ -57,9 +59,14 @@ TraverseConfig read_config(runtime::Config& cfg)
                            : traverse::UnknownPolicy::optimistic;
     a.max_unknown_fraction = ar.get_double("max_unknown_fraction", a.max_unknown_fraction, 0.0, 1.0);
     a.unknown_weight = ar.get_double("unknown_weight", a.unknown_weight, 0.0, 1.0);
-    if (f.front_x_m - f.rear_x_m < 0.1) fp.fail("front_x_m", "must be at least 0.1 m ahead of rear_x_m");
+    // The turning centre must lie outside the swept width, or the vehicle spins in place.
+    const double half_swept_m = 0.5 * f.width_m + a.margin_m;
+    if (a.max_curvature_per_m * half_swept_m >= 1.0)
+        ar.fail("max_curvature_per_m", "the turning radius must exceed half the swept width ([footprint] width_m / 2 + "
+                                       "margin_m = " + fmt::format("{:g}", half_swept_m) + " m)");
+    if (a.count > 1 && a.max_curvature_per_m == 0.0) ar.fail("max_curvature_per_m", "must be > 0 with more than one arc");
 
-    // What only the combination can break (an arc tighter than the footprint can turn).
+    // Whatever else the library refuses.
     try {
         traverse::Traversability check(c.analysis);
     } catch (const std::invalid_argument& e) {
