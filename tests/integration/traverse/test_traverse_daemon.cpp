@@ -1,13 +1,14 @@
-// ugv-traverse end to end, on terrain maps of a known world: flat ground and a 0.6 m box (0.6 m x 0.4 m)
-// straight ahead that the vehicle drives towards (0.4 m per map). The maps are played into
-// a live daemon with lcm-logplayer, replayed with --replay, and sent malformed; bad config
-// keys are refused.
+// ugv-traverse end to end, on terrain maps of a known world: flat ground and a box 0.6 m
+// tall (0.6 m x 0.4 m) straight ahead that the vehicle drives towards (0.4 m per map). The
+// maps are played into a live daemon with lcm-logplayer, replayed with --replay, and sent
+// malformed or absurdly stamped; bad config keys are refused.
 #include <catch2/catch.hpp>
 
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <map>
@@ -287,7 +288,7 @@ TEST_CASE("ugv-traverse --replay LOG --out LOG gives the same bytes twice")
     }
 }
 
-TEST_CASE("ugv-traverse counts and drops malformed and NaN maps and goes on")
+TEST_CASE("ugv-traverse counts and drops malformed and NaN maps, refuses absurd stamps, and goes on")
 {
     LiveTraverse t(7766, kLiveConfig);
     auto out = bus::open_live(t.url);
@@ -299,6 +300,16 @@ TEST_CASE("ugv-traverse counts and drops malformed and NaN maps and goes on")
         usleep(100'000);  // one at a time, in order
     };
     send(world_map(0, 0));
+    // Refused for their stamps before the analysis sees them.
+    const auto send_stamped = [&](int64_t utime) {
+        terrain_map_t m = world_map(0, 0);
+        m.seq = seq++;
+        m.utime = m.pose.utime = utime;
+        bus::publish(*out, "TERRAIN_MAP", m);
+        usleep(100'000);
+    };
+    send_stamped(INT64_MAX);
+    send_stamped(io::now_utime() - 3'600'000'000);  // an hour old: beyond max_age_s
     terrain_map_t m = world_map(0, 0);
     m.nx = kN - 1;  // ncells (and every array) disagree with nx * ny
     send(m);
@@ -314,9 +325,11 @@ TEST_CASE("ugv-traverse counts and drops malformed and NaN maps and goes on")
     send(world_map(1, 0));
     REQUIRE(t.listener.spin_until([&] { return t.listener.counter("maps_in") == 6; }, 5));
     CHECK(t.listener.counter("maps_malformed") == 4);
+    CHECK(t.listener.counter("stamps_ahead") == 1);
+    CHECK(t.listener.counter("stamps_too_old") == 1);
     CHECK(t.listener.counter("maps_published") == 2);
     CHECK(t.listener.arcs.size() == 2);
-    CHECK(t.listener.arcs.count(5) == 1);  // the map after the bad ones
+    CHECK(t.listener.arcs.count(7) == 1);  // the map after the bad ones
     CHECK(t.process->running());
     // One rate-limited line for the four, naming the first one's fault.
     const std::string err = t.err();
@@ -324,7 +337,7 @@ TEST_CASE("ugv-traverse counts and drops malformed and NaN maps and goes on")
     std::size_t lines = 0;
     for (std::size_t p = err.find("dropped:"); p != std::string::npos; p = err.find("dropped:", p + 1)) ++lines;
     CHECK(lines == 1);
-    CHECK(err.find("map seq 1 dropped") != std::string::npos);
+    CHECK(err.find("map seq 3 dropped") != std::string::npos);
 }
 
 TEST_CASE("ugv-traverse refuses a bad key with one line naming it and exit status 2")
