@@ -3,6 +3,7 @@
 #include <exception>
 #include <utility>
 
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include "traverse_messages.hpp"
@@ -55,6 +56,8 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
     // Flowing: ARCS published, i.e. maps come and are analysed (malformed ones are not).
     d.declare_output(config.arcs_channel, config.health_timeout_us);
     bool any_published = false;
+    int64_t last_published_us = io::monotonic_us();  // or the start
+    bool dropping = false;  // DEGRADED because every map is dropped
     // While every map is refused for its stamp: DEGRADED, saying so; RUNNING again once one
     // is taken. A map older than max_age_s would be all UNKNOWN.
     daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.max_stamp_age_us},
@@ -67,7 +70,9 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
         [&](const candidate_arcs_t& m) {
             if (!bus::publish(d.out(), config.arcs_channel, m)) return;
             d.mark_output();
-            if (!any_published && !stamps.refusing()) d.ready();
+            last_published_us = io::monotonic_us();
+            if ((!any_published || dropping) && !stamps.refusing()) d.ready();
+            dropping = false;
             any_published = true;
         },
         [&](const traversability_map_t& m) { bus::publish(d.out(), config.traversability_channel, m); },
@@ -83,9 +88,13 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
         if (!node.on_map(m)) {
             const std::string why = "map seq " + std::to_string(m.seq) + " dropped: " + node.why();
             dropped_log.log(spdlog::level::warn, "dropped", config.map_channel + " " + why, io::monotonic_us());
-            // The reason kept for STATUS when ARCS stop ("no ARCS for 2.0 s (...)"); the state
-            // itself follows the output.
-            if (!stamps.refusing()) d.set_state(any_published ? daemon::State::running : daemon::State::starting, why);
+            // Maps come but none gets through: DEGRADED with the library's reason (the daemon
+            // is alive and saying why; a restart would not help), RUNNING with the next ARCS.
+            const double stalled_s = static_cast<double>(io::monotonic_us() - last_published_us) * 1e-6;
+            if (stalled_s * 1e6 > static_cast<double>(config.health_timeout_us) && !stamps.refusing()) {
+                d.set_state(daemon::State::degraded, fmt::format("no map analysed for {:.1f} s, {}", stalled_s, why));
+                dropping = true;
+            }
         }
         sync_counters();
     });

@@ -365,3 +365,34 @@ TEST_CASE("ugv-traverse refuses a bad key with one line naming it and exit statu
         CHECK(std::count(err.begin(), err.end(), '\n') == 1);
     }
 }
+
+TEST_CASE("ugv-traverse is RUNNING while ARCS flow, DEGRADED saying why while every map is dropped")
+{
+    LiveTraverse t(7767, kLiveConfig + "health_timeout_s = 1.0\n");
+    auto out = bus::open_live(t.url);
+    int64_t seq = 0;
+    // Sends a map every 0.25 s until the daemon's STATUS says `state`, its last_error holding
+    // `why` (or 8 s pass).
+    const auto feed_until = [&](bool malformed, int8_t state, const std::string& why) {
+        return test::wait_until(
+            [&] {
+                terrain_map_t m = world_map(0, 0);
+                if (malformed) m.max_z[100] = -1.0f;
+                m.seq = seq++;
+                m.utime = m.pose.utime = io::now_utime();
+                bus::publish(*out, "TERRAIN_MAP", m);
+                t.listener.spin_until([] { return false; }, 0.25);
+                if (t.listener.status.empty()) return false;
+                const daemon_status_t& s = t.listener.status.back();
+                return s.state == state && s.last_error.find(why) != std::string::npos;
+            },
+            8);
+    };
+    REQUIRE(feed_until(false, daemon_status_t::STATE_RUNNING, ""));
+    // The generic "no ARCS for 1.0 s" may come first; the library's reason follows.
+    CHECK(feed_until(true, daemon_status_t::STATE_DEGRADED, "no map analysed for"));
+    INFO(t.listener.status.back().last_error);
+    CHECK(t.listener.status.back().last_error.find("max below min") != std::string::npos);
+    CHECK(feed_until(false, daemon_status_t::STATE_RUNNING, ""));
+    CHECK(t.process->running());
+}
