@@ -87,7 +87,7 @@ TEST_CASE("status: every library counter of every daemon is in its first STATUS 
         {
             REQUIRE(c.library_counters.size() >= 4);
             // 7667 is the stack's default port: ugv-traverse has one of its own tests' block.
-            const daemon_status_t s = first_status(c, c.program == "ugv-traverse" ? 7767 : port);
+            const daemon_status_t s = first_status(c, c.program == "ugv-traverse" ? 7776 : port);
             const std::set<std::string> published(s.counter_names.begin(), s.counter_names.end());
             for (const std::string& name : c.library_counters) {
                 INFO(c.program << " publishes " << name);
