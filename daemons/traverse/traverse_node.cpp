@@ -106,8 +106,8 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
     const int rc = d.run();
     sync_counters();
     const auto& c = d.counters();
-    spdlog::info("{} maps in, {} published, {} malformed, {} out of order", c.get("maps_in"), c.get("maps_published"),
-                 c.get("maps_malformed"), c.get("maps_out_of_order"));
+    spdlog::info("{} maps in, {} published, {} malformed, {} duplicates", c.get("maps_in"), c.get("maps_published"),
+                 c.get("maps_malformed"), c.get("maps_duplicate"));
     return rc;
 }
 

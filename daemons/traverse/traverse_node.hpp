@@ -44,7 +44,7 @@ public:
     TraverseNode(const TraverseConfig& config, PublishArcs arcs, PublishMap map, std::function<int64_t()> now_us);
 
     // Analyses one map and publishes its outputs; false when the map was dropped (malformed,
-    // out of order: counted by the analysis, why() says which check failed).
+    // a repeat of the last: counted by the analysis, why() says which check failed).
     bool on_map(const terrain_map_t& msg);
 
     const traverse::Traversability& analysis() const { return analysis_; }

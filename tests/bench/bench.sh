@@ -187,7 +187,7 @@ STATUS_SERVO tx_failures bus_publish_failures bus_incomplete_messages
 STATUS_NODSCAN scans_overflow bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
 STATUS_POSE late bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
 STATUS_TERRAIN clouds_malformed clouds_rejected_time poses_rejected_out_of_order bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
-STATUS_TRAVERSE maps_malformed maps_out_of_order update_errors bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages"
+STATUS_TRAVERSE maps_malformed maps_duplicate update_errors bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages"
 
 # log_seq_contiguous LOG [LABEL]: a check per channel of the log: seq runs 0, 1, 2, ...
 # without a gap or a step back, i.e. every message its publisher sent since it started is in

@@ -317,7 +317,7 @@ TEST_CASE("ugv-traverse counts and drops malformed and NaN maps, refuses absurd 
     m.resolution = NAN;
     send(m);
     m = world_map(0, 0);
-    m.mean_z[5000] = NAN;  // a known cell (count 5)
+    m.max_z[5000] = NAN;  // in a known cell (count 5, a mean); a NaN mean is an unknown cell
     send(m);
     m = world_map(0, 0);
     m.max_z[5000] = -1.0f;  // below its min
