@@ -42,6 +42,13 @@ int box_row(int k) { return 43 - 2 * k; }
 bool in_box(int k, int i, int j) { return i >= box_row(k) && i < box_row(k) + 3 && j >= 49 && j <= 50; }
 double box_face_x(int k) { return kOriginX + box_row(k) * kRes; }
 
+// Fresh data, once terrain_map_t has the per-cell age (every array must be ncells long).
+template <class Map>
+void fresh_age(Map& m)
+{
+    if constexpr (requires { m.age_s; }) m.age_s.assign(static_cast<std::size_t>(m.ncells), 0.0f);
+}
+
 terrain_map_t world_map(int k, int64_t utime)
 {
     terrain_map_t m{};
@@ -62,6 +69,7 @@ terrain_map_t world_map(int k, int64_t utime)
     m.count.assign(kN * kN, 5);
     m.max_z.assign(kN * kN, 0.02f);
     m.min_z.assign(kN * kN, -0.02f);
+    fresh_age(m);
     for (int i = 0; i < kN; ++i)
         for (int j = 0; j < kN; ++j) {
             if (!in_box(k, i, j)) continue;
