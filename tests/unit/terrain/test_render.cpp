@@ -66,6 +66,7 @@ TEST_CASE("the plan view: unknown white, elevation coloured, forward up and left
     m.count.assign(400, 0);
     m.max_z.assign(400, NAN);
     m.min_z.assign(400, NAN);
+    m.age_s.assign(400, NAN);
     m.mean_z[19 * 20 + 0] = 1.0f;  // far, rightmost: top right of the picture, the highest (red)
     m.variance_z[19 * 20 + 0] = 0.04f;
     m.mean_z[0 * 20 + 19] = 0.0f;  // near, leftmost: bottom left, the lowest (green)
@@ -104,6 +105,7 @@ TEST_CASE("the vehicle outline and reference point are drawn where the map says"
     m.count.assign(1600, 0);
     m.max_z.assign(1600, NAN);
     m.min_z.assign(1600, NAN);
+    m.age_s.assign(1600, NAN);
     RenderOptions o;
     o.cell_px = 4;
     const Image img = render_map(m, o);
@@ -127,6 +129,7 @@ TEST_CASE("the max and min layers colour each cell by its highest or lowest samp
     m.count.assign(100, 0);
     m.max_z.assign(100, NAN);
     m.min_z.assign(100, NAN);
+    m.age_s.assign(100, NAN);
     // Two known cells: a wall's (mean 0.5, samples 0 .. 1.5) and the ground's (mean, max and
     // min 0.1 .. 0.2).
     const std::size_t wall = 3 * 10 + 4, ground = 6 * 10 + 2;
