@@ -6,22 +6,6 @@
 
 namespace ugv::traverse_daemon {
 
-namespace {
-
-// The per-cell age (s since the cell's newest sample) when the map carries it (terrain_map_t
-// gains age_s with the terrain branch that stamps cells); without it the layer stays empty,
-// i.e. every known cell is as fresh as its map.
-template <class Map>
-void copy_age(const Map& msg, traverse::TerrainGrid& grid)
-{
-    if constexpr (requires { msg.age_s; })
-        grid.age_s = msg.age_s;
-    else
-        grid.age_s.clear();
-}
-
-}  // namespace
-
 void to_grid(const terrain_map_t& msg, traverse::TerrainGrid& grid)
 {
     grid.utime_us = msg.utime;
@@ -38,7 +22,7 @@ void to_grid(const terrain_map_t& msg, traverse::TerrainGrid& grid)
     grid.max_z_m = msg.max_z;
     grid.min_z_m = msg.min_z;
     grid.count = msg.count;
-    copy_age(msg, grid);
+    grid.age_s = msg.age_s;  // s since each cell's newest sample: the certainty decays with it
 }
 
 namespace {

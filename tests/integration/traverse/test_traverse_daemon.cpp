@@ -42,13 +42,6 @@ int box_row(int k) { return 43 - 2 * k; }
 bool in_box(int k, int i, int j) { return i >= box_row(k) && i < box_row(k) + 3 && j >= 49 && j <= 50; }
 double box_face_x(int k) { return kOriginX + box_row(k) * kRes; }
 
-// Fresh data, once terrain_map_t has the per-cell age (every array must be ncells long).
-template <class Map>
-void fresh_age(Map& m)
-{
-    if constexpr (requires { m.age_s; }) m.age_s.assign(static_cast<std::size_t>(m.ncells), 0.0f);
-}
-
 terrain_map_t world_map(int k, int64_t utime)
 {
     terrain_map_t m{};
@@ -69,7 +62,7 @@ terrain_map_t world_map(int k, int64_t utime)
     m.count.assign(kN * kN, 5);
     m.max_z.assign(kN * kN, 0.02f);
     m.min_z.assign(kN * kN, -0.02f);
-    fresh_age(m);
+    m.age_s.assign(kN * kN, 0.0f);  // fresh
     for (int i = 0; i < kN; ++i)
         for (int j = 0; j < kN; ++j) {
             if (!in_box(k, i, j)) continue;
@@ -403,4 +396,36 @@ TEST_CASE("ugv-traverse is RUNNING while ARCS flow, DEGRADED saying why while ev
     CHECK(t.listener.status.back().last_error.find("max below min") != std::string::npos);
     CHECK(feed_until(false, daemon_status_t::STATE_RUNNING, ""));
     CHECK(t.process->running());
+}
+
+TEST_CASE("ugv-traverse takes each cell's age from the map: data older than max_age_s is UNKNOWN")
+{
+    test::TempDir dir;
+    const std::string log = dir / "old.lcm";
+    {
+        const int64_t t0 = 1'700'000'000'000'000;
+        int64_t now = t0;
+        auto w = bus::open_log_writer(log, [&] { return now; });
+        terrain_map_t m = world_map(0, t0);
+        m.age_s.assign(static_cast<std::size_t>(m.ncells), 1.0f);
+        for (int i = 0; i < kN; ++i)
+            for (int j = 0; j < kN; ++j)
+                if (in_box(0, i, j)) m.age_s[static_cast<std::size_t>(i * kN + j)] = 120.0f;  // > max_age_s 60
+        bus::publish(*w, "TERRAIN_MAP", m);
+    }
+    const int rc = test::run({test::bin("ugv-traverse"), "--replay", log, "--out", dir / "out.lcm"}, dir / "o", dir / "e", 30.0);
+    INFO(test::read_file(dir / "e"));
+    REQUIRE(rc == 0);
+    const auto maps = decode_all<traversability_map_t>(dir / "out.lcm", "TRAVERSABILITY_MAP");
+    REQUIRE(maps.size() == 1);
+    int box_unknown = 0;
+    for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j)
+            if (in_box(0, i, j))
+                box_unknown += maps[0].cell_class[static_cast<std::size_t>(i * kN + j)] == traversability_map_t::CLASS_UNKNOWN;
+    CHECK(box_unknown == 6);
+    CHECK(maps[0].cell_class[static_cast<std::size_t>(20 * kN + 20)] == traversability_map_t::CLASS_TRAVERSABLE);
+    const auto arcs = decode_all<candidate_arcs_t>(dir / "out.lcm", "ARCS");
+    REQUIRE(arcs.size() == 1);
+    CHECK(arcs[0].blocked[static_cast<std::size_t>(arcs[0].narcs / 2)] == 0);  // the box forgotten (optimistic)
 }
