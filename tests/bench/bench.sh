@@ -9,7 +9,7 @@
 #                              emulator) and its daemon, the `running` check
 #   bench_whole_stack NAME PORT ARGS...          flags, bench_begin, bench_start_stack:
 #                              lcm-logger, the devices (ugv-sim world for BENCH_SECONDS + 30 s),
-#                              all seven daemons
+#                              all eight daemons
 #   check NAME CMD...          runs CMD; prints `ok NAME: <its last output line>` or FAIL
 #   verdict NAME OK WHAT       the same for a condition already computed (OK: 0 = pass)
 #   expect NAME ARGS...        ugv-expect ARGS (on the bench's URL) as a check
@@ -175,7 +175,8 @@ STATUS_IMU published IMU
 STATUS_SERVO samples SERVO_STATE
 STATUS_NODSCAN scans_out POINTS
 STATUS_POSE poses POSE
-STATUS_TERRAIN maps_published TERRAIN_MAP"
+STATUS_TERRAIN maps_published TERRAIN_MAP
+STATUS_TRAVERSE maps_published ARCS"
 
 # The counters of data a daemon dropped or could not publish (STATUS COUNTER...). Input
 # faults (CRC errors, resyncs) and start-up waits (points before the first pose) are not drops.
@@ -185,7 +186,8 @@ STATUS_IMU publish_failures bus_publish_failures
 STATUS_SERVO tx_failures bus_publish_failures bus_incomplete_messages
 STATUS_NODSCAN scans_overflow bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
 STATUS_POSE late bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
-STATUS_TERRAIN clouds_malformed clouds_rejected_time poses_rejected_out_of_order bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages"
+STATUS_TERRAIN clouds_malformed clouds_rejected_time poses_rejected_out_of_order bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages
+STATUS_TRAVERSE maps_malformed maps_duplicate update_errors bus_decode_failures bus_handler_errors bus_publish_failures bus_incomplete_messages"
 
 # log_seq_contiguous LOG [LABEL]: a check per channel of the log: seq runs 0, 1, 2, ...
 # without a gap or a step back, i.e. every message its publisher sent since it started is in

@@ -2,7 +2,7 @@
 # Bench: the whole stack on the simulated vehicle (or real devices), about 50 s.
 #   tests/bench/full-stack.sh [--seconds 20] [--lms PATH --gps PATH --imu PATH --servo TRANSPORT] [--keep]
 # tools/lib/stack.sh starts lcm-logger, the devices (`ugv-sim world` when ugv-sim has it, else
-# the four separate emulators; real ones where given) and all seven daemons with their
+# the four separate emulators; real ones where given) and all eight daemons with their
 # default configs. Checks:
 #   running NAME      each daemon reports RUNNING within 30 s of its start (ugv-pose may be
 #                     DEGRADED on the parked emulators: the heading is not observable);
@@ -38,6 +38,8 @@ POINTS 35:40
 POSE 9.5:10.5
 TERRAIN_MAP 1.7:2.3
 STATUS_TERRAIN 0.8:1.2
+ARCS 1.7:2.3
+TRAVERSABILITY_MAP 1.7:2.3
 RATES
 expect_collect
 stop_clean

@@ -4,14 +4,14 @@
 #
 #   stack_init OUT [URL]          output folder (config/, run/, stderr/, ugv.lcm) and LCM URL
 #   stack_set NAME 'key = value'  an extra config line for daemon NAME (lms gps imu servo
-#                                 nodscan pose terrain); top-level keys or whole tables
+#                                 nodscan pose terrain traverse); top-level keys or whole tables
 #   stack_start_logger [ARGS...]  lcm-logger -> OUT/ugv.lcm (ARGS: e.g. -c REGEX)
 #   stack_start_devices [ARGS...] the four devices: `ugv-sim world` (ARGS go to it) when ugv-sim
 #                                 offers it and no real device is given, else stack_start_device
 #                                 for each
 #   stack_start_device NAME [ARGS...]  one device: the real one given by its variable (below),
 #                                 else its emulator `ugv-sim NAME --pty OUT/run/NAME ARGS`
-#   stack_start_daemons [NAME...] daemons (default: all seven), config OUT/config/NAME.toml
+#   stack_start_daemons [NAME...] daemons (default: all eight), config OUT/config/NAME.toml
 #   stack_stop                    daemons, then simulators, then the logger: SIGTERM, wait up
 #                                 to STACK_STOP_WAIT_S (5) each, SIGKILL and report the rest
 #   stack_counter CH NAME [LOG]   a counter of the daemon status on channel CH (STATUS_LMS):
@@ -37,7 +37,7 @@
 STACK_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 STACK_BIN=${UGV_BIN_DIR:-$STACK_ROOT/build/bin}
 STACK_STOP_WAIT_S=${STACK_STOP_WAIT_S:-5}
-STACK_DAEMONS=(lms gps imu servo nodscan pose terrain)
+STACK_DAEMONS=(lms gps imu servo nodscan pose terrain traverse)
 declare -A STACK_PIDS=() STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=()
 STACK_KILLED=()
 export STACK_SIM=none   # none | world | emulators: what the devices are (for the scripts)

@@ -2,6 +2,8 @@
 //   ugv-logstat LOG [--channel REGEX] [--json]
 //   ugv-logstat LOG --scan-to-map [--scan-channel LMS_SCAN] [--map-channel TERRAIN_MAP]
 //       latency from each laser scan to the first map holding its points (scan_to_map.hpp)
+//   ugv-logstat LOG --latency-from TERRAIN_MAP --latency-to ARCS
+//       the latency a daemon adds: each output to the input of the same utime (stamp_latency.hpp)
 // Exit 0; 2 when the log cannot be read.
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "ugv/laser_scan_t.hpp"
 #include "ugv/logstat/channel_stats.hpp"
 #include "ugv/logstat/scan_to_map.hpp"
+#include "ugv/logstat/stamp_latency.hpp"
 
 namespace {
 
@@ -54,6 +57,11 @@ int main(int argc, char** argv)
     app.add_flag("--scan-to-map", scan_to_map, "latency from each laser scan to the first map holding its points");
     app.add_option("--scan-channel", scan_channel, "with --scan-to-map");
     app.add_option("--map-channel", map_channel, "with --scan-to-map");
+    std::string latency_from, latency_to;
+    auto* from_opt = app.add_option("--latency-from", latency_from,
+                                    "input channel: the latency to --latency-to's messages of the same utime");
+    app.add_option("--latency-to", latency_to, "output channel, with --latency-from")->needs(from_opt);
+    from_opt->needs(app.get_option("--latency-to"));
     CLI11_PARSE(app, argc, argv);
 
     std::unique_ptr<ugv::bus::Bus> bus;
@@ -86,6 +94,31 @@ int main(int argc, char** argv)
                     scan_channel.c_str(), map_channel.c_str(), v.size(), static_cast<double>(ugv::logstat::percentile(v, 50)) / 1e3,
                     static_cast<double>(ugv::logstat::percentile(v, 99)) / 1e3,
                     static_cast<double>(ugv::logstat::percentile(v, 100)) / 1e3, latency.pending());
+        return 0;
+    }
+    if (!latency_from.empty()) {
+        ugv::logstat::StampLatency latency;
+        bus->subscribe(latency_from, [&](const std::string&, const uint8_t* d, std::size_t n, int64_t t) {
+            int64_t utime = 0, seq = 0;
+            if (ugv::logstat::read_header(d, n, utime, seq)) latency.add_input(t, utime);
+        });
+        bus->subscribe(latency_to, [&](const std::string&, const uint8_t* d, std::size_t n, int64_t t) {
+            int64_t utime = 0, seq = 0;
+            if (ugv::logstat::read_header(d, n, utime, seq)) latency.add_output(t, utime);
+        });
+        while (bus->handle(0) == ugv::bus::HandleResult::handled) {
+        }
+        const auto& v = latency.latencies_us();
+        if (v.empty()) {
+            std::fprintf(stderr, "ugv-logstat: no message on %s answers one on %s\n", latency_to.c_str(),
+                         latency_from.c_str());
+            return 1;
+        }
+        std::printf("%s -> %s added latency over %zu messages: p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu inputs unanswered)\n",
+                    latency_from.c_str(), latency_to.c_str(), v.size(),
+                    static_cast<double>(ugv::logstat::percentile(v, 50)) / 1e3,
+                    static_cast<double>(ugv::logstat::percentile(v, 99)) / 1e3,
+                    static_cast<double>(ugv::logstat::percentile(v, 100)) / 1e3, latency.unanswered());
         return 0;
     }
     ugv::logstat::StreamStats stats;

@@ -10,6 +10,7 @@
 #include "nodscan_node.hpp"
 #include "servo_node.hpp"
 #include "terrain_node.hpp"
+#include "traverse_node.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/daemon_status_t.hpp"
 #include "ugv/estimation/pose_estimator.hpp"
@@ -77,13 +78,16 @@ TEST_CASE("status: every library counter of every daemon is in its first STATUS 
         {"ugv-pose", "STATUS_POSE", "", names_of(estimation::EstimatorCounters{}, runtime::StampCounters{})},
         {"ugv-terrain", "STATUS_TERRAIN", "",
          names_of(terrain::MapCounters{}, terrain_daemon::NodeCounters{}, runtime::StampCounters{})},
+        {"ugv-traverse", "STATUS_TRAVERSE", "",
+         names_of(traverse::TraverseCounters{}, traverse_daemon::NodeCounters{}, runtime::StampCounters{})},
     };
     int port = 7660;
     for (const Case& c : cases) {
         SECTION(c.program)
         {
             REQUIRE(c.library_counters.size() >= 4);
-            const daemon_status_t s = first_status(c, port);
+            // 7667 is the stack's default port: ugv-traverse has one of its own tests' block.
+            const daemon_status_t s = first_status(c, c.program == "ugv-traverse" ? 7776 : port);
             const std::set<std::string> published(s.counter_names.begin(), s.counter_names.end());
             for (const std::string& name : c.library_counters) {
                 INFO(c.program << " publishes " << name);

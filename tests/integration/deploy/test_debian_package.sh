@@ -23,7 +23,7 @@ done
 
 contents=$(dpkg-deb -c "$deb")
 for path in ./usr/bin/ugv-dump ./usr/bin/ugv-logstat ./usr/bin/ugv-sim ./usr/lib/systemd/system/ugv.target \
-            ./usr/lib/systemd/system/ugv-lms@.service ./usr/lib/systemd/system/ugv-logger.service \
+            ./usr/lib/systemd/system/ugv-lms@.service ./usr/lib/systemd/system/ugv-logger.service ./usr/lib/systemd/system/ugv-traverse.service \
             ./usr/lib/sysusers.d/ugv.conf ./usr/lib/sysctl.d/60-ugv-lcm.conf ./usr/lib/ugv/libugv-lcm-queue.so ./usr/share/doc/ugv/ARCHITECTURE.md ./usr/share/doc/ugv/examples/60-ugv.rules \
             ./usr/share/ugv/lcmtypes/pose_t.lcm; do
   grep -q " $path\$" <<<"$contents" && check ok "contains $path" || check no "missing $path"

@@ -16,7 +16,7 @@ cp -a /usr/lib/systemd/system "$root/usr/lib/systemd/"
 cp /usr/bin/lcm-logger "$root/usr/bin/"   # from liblcm-bin, run by ugv-logger.service
 units_dir=$root/usr/lib/systemd/system
 mapfile -t units < <(cd "$units_dir" && ls ugv*.service ugv*.target)
-[ ${#units[@]} -ge 9 ] && check ok "${#units[@]} units installed" || check no "expected >= 9 units, found ${#units[@]}"
+[ ${#units[@]} -ge 10 ] && check ok "${#units[@]} units installed" || check no "expected >= 10 units, found ${#units[@]}"
 
 for u in "${units[@]}"; do
   name=$u

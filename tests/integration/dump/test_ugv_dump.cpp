@@ -44,8 +44,8 @@ TEST_CASE("ugv-dump prints every message of an lcm-logger log as JSON lines")
     }
     REQUIRE(test::run({test::bin("ugv-dump"), "--log", log, "--channel", "SAMPLE_.*"}, dir / "o", dir / "e") == 0);
     const auto lines = lines_of(test::read_file(dir / "o"));
-    REQUIRE(lines.size() == 12);
-    for (std::size_t k = 0; k < 12; ++k) {
+    REQUIRE(lines.size() == 14);
+    for (std::size_t k = 0; k < 14; ++k) {
         INFO(lines[k]);
         CHECK(lines[k].rfind("{\"channel\":\"SAMPLE_" + names[k] + "\",\"utime\":" + std::to_string(1000 + k) +
                                  ",\"recv_utime\":",

@@ -16,7 +16,7 @@ using namespace ugv;
 namespace {
 
 const std::vector<std::string> kDaemons = {"ugv-gps", "ugv-lms", "ugv-imu", "ugv-servo",
-                                           "ugv-nodscan", "ugv-pose", "ugv-terrain"};
+                                           "ugv-nodscan", "ugv-pose", "ugv-terrain", "ugv-traverse"};
 
 struct Outcome
 {
@@ -104,6 +104,7 @@ TEST_CASE("every publish channel key is a channel name, every subscribe key a re
         {"ugv-nodscan", {"channel"}},
         {"ugv-pose", {"channel"}},
         {"ugv-terrain", {"map_channel"}},
+        {"ugv-traverse", {"traversability_channel", "arcs_channel"}},
     };
     const std::string file = dir / "d.toml";
     for (const auto& [d, keys] : publish) {
@@ -120,6 +121,7 @@ TEST_CASE("every publish channel key is a channel name, every subscribe key a re
         {"ugv-nodscan", {"scan_channel", "servo_channel"}},
         {"ugv-pose", {"gps_fix_channel", "gps_velocity_channel", "imu_channel"}},
         {"ugv-terrain", {"points_channel", "pose_channel"}},
+        {"ugv-traverse", {"map_channel"}},
     };
     for (const auto& [d, keys] : subscribe) {
         for (const auto& key : keys) {

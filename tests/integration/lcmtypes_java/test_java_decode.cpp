@@ -15,7 +15,7 @@ TEST_CASE("the Java classes in ugv_lcmtypes.jar decode every C++-encoded ugv mes
         auto w = ugv::bus::open_log_writer(dir / "all.lcm", [] { return int64_t{1}; });
         names = ugv::test::publish_samples(*w);
     }
-    REQUIRE(names.size() == 12);
+    REQUIRE(names.size() == 14);
     const int code = ugv::test::run({JAVA_EXECUTABLE, "-cp", JAVA_CLASSPATH, "DecodeAll", dir / "all.lcm", UGV_TYPES_JAR},
                                     dir / "out", dir / "err", 120);
     INFO(ugv::test::read_file(dir / "err"));
@@ -23,8 +23,8 @@ TEST_CASE("the Java classes in ugv_lcmtypes.jar decode every C++-encoded ugv mes
     std::istringstream out(ugv::test::read_file(dir / "out"));
     std::vector<std::string> lines;
     for (std::string l; std::getline(out, l);) lines.push_back(l);
-    REQUIRE(lines.size() == 12);
-    for (std::size_t k = 0; k < 12; ++k) {
+    REQUIRE(lines.size() == 14);
+    for (std::size_t k = 0; k < 14; ++k) {
         INFO(lines[k]);
         CHECK(lines[k].rfind("SAMPLE_" + names[k] + "\tugv." + names[k] + "\t", 0) == 0);
         CHECK(lines[k].find("\tutime=" + std::to_string(1000 + k) + "\tseq=" + std::to_string(10 + k)) != std::string::npos);
@@ -35,4 +35,6 @@ TEST_CASE("the Java classes in ugv_lcmtypes.jar decode every C++-encoded ugv mes
     CHECK(lines[8].find("\tcount=[3, 0]") != std::string::npos);
     CHECK(lines[9].find("\tcounter_names=[scans]\tcounter_values=[375]") != std::string::npos);
     CHECK(lines[10].find("\tdata=[2, -128, -1]") != std::string::npos);
+    CHECK(lines[12].find("\tcell_class=[2, 0]\tcost=[1.0, NaN]") != std::string::npos);
+    CHECK(lines[13].find("\tblocked=[1, 0]\tbest=1") != std::string::npos);
 }

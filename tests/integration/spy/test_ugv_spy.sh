@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ugv-spy under Xvfb while the simulated vehicle runs (ugv-sim world and every daemon, from
 # tools/lib/stack.sh): the "LCM Spy" window comes up, lcm-spy
-# loads our 12 types from the jar, and a screenshot is kept in build/test-artifacts/ugv-spy.png
+# loads our 14 types from the jar, and a screenshot is kept in build/test-artifacts/ugv-spy.png
 # (look at it: the Type column names our types; an unknown type would show "?").
 set -uo pipefail
 build=$1 src=$2
@@ -32,8 +32,8 @@ for _ in $(seq 60); do
 done
 check $up "the LCM Spy window came up"
 sleep 3   # let a few messages arrive and the table fill
-grep -q "Found 12 LCM types" "$work/spy.out" && check ok "lcm-spy loaded our 12 types from ugv_lcmtypes.jar" \
-  || check no "lcm-spy did not report our 12 types: $(head -3 "$work/spy.out" | tr '\n' ' ')"
+grep -q "Found 14 LCM types" "$work/spy.out" && check ok "lcm-spy loaded our 14 types from ugv_lcmtypes.jar" \
+  || check no "lcm-spy did not report our 14 types: $(head -3 "$work/spy.out" | tr '\n' ' ')"
 mkdir -p "$build/test-artifacts"
 if DISPLAY=$display xwd -root -silent >"$work/spy.xwd" && python3 "$src/tools/spy/xwd2png.py" "$work/spy.xwd" "$build/test-artifacts/ugv-spy.png"; then
   check ok "screenshot kept: $build/test-artifacts/ugv-spy.png"

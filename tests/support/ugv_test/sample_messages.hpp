@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ugv/bus/typed.hpp"
+#include "ugv/candidate_arcs_t.hpp"
 #include "ugv/daemon_status_t.hpp"
 #include "ugv/gps_fix_t.hpp"
 #include "ugv/gps_velocity_t.hpp"
@@ -18,6 +19,7 @@
 #include "ugv/servo_state_t.hpp"
 #include "ugv/sim_truth_t.hpp"
 #include "ugv/terrain_map_t.hpp"
+#include "ugv/traversability_map_t.hpp"
 
 namespace ugv::test {
 
@@ -102,6 +104,34 @@ inline std::vector<std::string> publish_samples(bus::Bus& b)
     truth.scenario = "default";
     truth.servo_angle = 0.125;
     stamp(truth, "sim_truth_t");
+    traversability_map_t trav{};
+    trav.map_seq = 9;
+    trav.resolution = 0.2f;
+    trav.nx = 1;
+    trav.ny = 2;
+    trav.ncells = 2;
+    trav.cell_class = {traversability_map_t::CLASS_OBSTACLE, traversability_map_t::CLASS_UNKNOWN};
+    trav.cost = {1.0f, NAN};
+    trav.step_m = {0.5f, NAN};
+    trav.drop_m = {0.0f, NAN};
+    trav.slope_deg = {12.5f, NAN};
+    trav.roughness_m = {0.25f, NAN};
+    trav.span_m = {0.75f, NAN};
+    trav.certainty = {1.0f, 0.0f};
+    stamp(trav, "traversability_map_t");
+    candidate_arcs_t arcs{};
+    arcs.map_seq = 9;
+    arcs.length_m = 12.0f;
+    arcs.swept_width_m = 2.25f;
+    arcs.narcs = 2;
+    arcs.curvature = {-0.125f, 0.125f};
+    arcs.clear_distance_m = {4.5f, 12.0f};
+    arcs.unknown_fraction = {0.0f, 0.25f};
+    arcs.mean_cost = {0.5f, 0.0f};
+    arcs.merit = {0.0f, 0.875f};
+    arcs.blocked = {1, 0};
+    arcs.best = 1;
+    stamp(arcs, "candidate_arcs_t");
     return names;
 }
 

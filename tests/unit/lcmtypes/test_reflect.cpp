@@ -39,7 +39,7 @@ TEST_CASE("every ugv type is known to the reflection, with distinct fingerprints
 TEST_CASE("every ugv message prints as JSON with its values")
 {
     const auto samples = encoded_samples();
-    REQUIRE(samples.size() == 12);
+    REQUIRE(samples.size() == 14);
     std::map<std::string, std::string> json;
     for (const auto& [ch, bytes] : samples) {
         std::string type;
@@ -54,6 +54,10 @@ TEST_CASE("every ugv message prints as JSON with its values")
     CHECK(json["SAMPLE_daemon_status_t"].find("\"counter_names\":[\"scans\"],\"counter_values\":[375]") != std::string::npos);
     CHECK(json["SAMPLE_raw_bytes_t"].find("\"data\":[2,128,255]") != std::string::npos);
     CHECK(json["SAMPLE_sim_truth_t"].find("\"servo_angle\":0.125") != std::string::npos);
+    CHECK(json["SAMPLE_traversability_map_t"].find("\"map_seq\":9,") != std::string::npos);
+    CHECK(json["SAMPLE_traversability_map_t"].find("\"cell_class\":[2,0],\"cost\":[1,null]") != std::string::npos);
+    CHECK(json["SAMPLE_candidate_arcs_t"].find("\"clear_distance_m\":[4.5,12]") != std::string::npos);
+    CHECK(json["SAMPLE_candidate_arcs_t"].find("\"blocked\":[1,0],\"best\":1}") != std::string::npos);
 }
 
 TEST_CASE("truncated, unknown and short inputs are told apart")

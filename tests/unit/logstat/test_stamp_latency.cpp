@@ -1,0 +1,48 @@
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "ugv/logstat/stamp_latency.hpp"
+
+using namespace ugv::logstat;
+
+TEST_CASE("an output's latency runs from the input with its utime")
+{
+    StampLatency l;
+    l.add_input(1'000, 500);
+    l.add_input(1'500, 1'000);
+    l.add_output(1'700, 500);    // answers the first
+    l.add_output(1'900, 500);    // the second output of the same input (another channel): not timed twice
+    l.add_output(2'100, 1'000);
+    CHECK(l.latencies_us() == std::vector<int64_t>{700, 600});
+    CHECK(l.unanswered() == 0);
+}
+
+TEST_CASE("inputs the daemon dropped are counted, outputs of unknown inputs ignored")
+{
+    StampLatency l;
+    l.add_input(1'000, 500);   // dropped (malformed)
+    l.add_input(1'500, 1'000);
+    l.add_output(1'400, 1'000);  // received before its input: not an answer to it
+    l.add_output(1'600, 9'999);  // no such input
+    CHECK(l.latencies_us().empty());
+    l.add_output(1'800, 1'000);
+    CHECK(l.latencies_us() == std::vector<int64_t>{300});
+    CHECK(l.unanswered() == 1);
+    l.add_input(2'000, 1'500);   // still in work at the end of the log
+    CHECK(l.unanswered() == 2);
+}
+
+TEST_CASE("extreme receive times saturate, and the waiting inputs are bounded")
+{
+    StampLatency l;
+    l.add_input(INT64_MIN, 1);
+    l.add_output(INT64_MAX, 1);
+    CHECK(l.latencies_us() == std::vector<int64_t>{INT64_MAX});
+    for (int64_t k = 0; k < 5000; ++k) l.add_input(k, 100 + k);
+    CHECK(l.unanswered() == 5000);
+    l.add_output(6'000, 100 + 4'999);
+    CHECK(l.latencies_us().back() == 6'000 - 4'999);
+    CHECK(l.unanswered() == 4999);
+}

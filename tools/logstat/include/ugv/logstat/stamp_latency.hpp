@@ -1,0 +1,36 @@
+// The latency a processing daemon adds, from the receive times in an LCM log: its output
+// carries its input's utime (a TRAVERSABILITY_MAP or ARCS the TERRAIN_MAP's), so an output's
+// latency is its receive time minus that of the input with the same utime (the first such
+// input received before it). Inputs never answered are counted, not timed.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+namespace ugv::logstat {
+
+class StampLatency
+{
+public:
+    void add_input(int64_t recv_utime, int64_t utime);
+    void add_output(int64_t recv_utime, int64_t utime);
+    // One latency (us) per output matched to an input, in output order.
+    const std::vector<int64_t>& latencies_us() const { return latencies_; }
+    // Inputs no output has answered (yet): dropped, refused or still in work at the end.
+    std::size_t unanswered() const { return inputs_.size() + forgotten_; }
+
+private:
+    struct Input
+    {
+        int64_t recv_utime, utime;
+    };
+    // The newest inputs; an output answers one of them or none (a log holds hours of maps).
+    static constexpr std::size_t kMaxWaiting = 1024;
+    std::deque<Input> inputs_;
+    std::size_t forgotten_ = 0;
+    std::vector<int64_t> latencies_;
+};
+
+}  // namespace ugv::logstat
