@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iterator>
 
+#include "ugv/candidate_arcs_t.hpp"
 #include "ugv/daemon_status_t.hpp"
 #include "ugv/gps_fix_t.hpp"
 #include "ugv/gps_velocity_t.hpp"
@@ -16,6 +17,7 @@
 #include "ugv/servo_state_t.hpp"
 #include "ugv/sim_truth_t.hpp"
 #include "ugv/terrain_map_t.hpp"
+#include "ugv/traversability_map_t.hpp"
 
 namespace ugv::reflect {
 namespace {
