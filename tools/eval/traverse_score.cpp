@@ -210,7 +210,8 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
     fp.front_x_m = front_x_m;
     fp.width_m = arcs.swept_width_m;  // the margin is in it
     const double length = arcs.length_m;
-    const double corner = std::hypot(std::max(std::abs(rear_x_m), std::abs(front_x_m)), 0.5 * fp.width_m);
+    const double half_width = 0.5 * fp.width_m, tip = std::max(std::abs(rear_x_m), std::abs(front_x_m));
+    const double corner = std::hypot(tip, half_width);
     const double reach = length + corner;
     // The truth's obstacle columns within reach of the body origin, in the body frame of the
     // arcs' pose (the map's pose: the same map_seq).
@@ -240,11 +241,16 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
         bool blocked_seen = false, blocked_all = false;
         for (const TruthColumn& c : columns) {
             if (blocked_all && (blocked_seen || !c.seen)) continue;
-            // Far from the body origin's path (a circle, or a line): never under the footprint.
+            // Outside the band the footprint can sweep (a strip, or an annulus about the turn
+            // centre from the inner side's radius to the outer front corner's): never covered.
             if (std::abs(curv) < 1e-9) {
-                if (std::abs(c.body_m.y()) > corner) continue;
-            } else if (std::abs((c.body_m - Eigen::Vector2d(0.0, 1.0 / curv)).norm() - 1.0 / std::abs(curv)) > corner) {
-                continue;
+                if (std::abs(c.body_m.y()) > half_width || c.body_m.x() < rear_x_m || c.body_m.x() > length + front_x_m)
+                    continue;
+            } else {
+                const double radius = 1.0 / std::abs(curv);
+                const double from_centre = (c.body_m - Eigen::Vector2d(0.0, 1.0 / curv)).norm();
+                if (from_centre < radius - half_width - 1e-6 || from_centre > std::hypot(radius + half_width, tip) + 1e-6)
+                    continue;
             }
             const double at = traverse::first_cover_s(curv, fp, 0.0, length, c.body_m, f.resolution_m);
             if (std::isnan(at)) continue;

@@ -35,6 +35,8 @@ TruthTerrain::TruthTerrain(std::shared_ptr<const simworld::HeightField> field, c
         throw std::invalid_argument("truth rules: the slope limit must lie between 0 and 90 degrees");
     step_disc_ = disc(rules.step_radius_m, field_->resolution_m);
     slope_disc_ = disc(rules.slope_radius_m, field_->resolution_m);
+    slope_reach_ = static_cast<int>(std::floor(rules.slope_radius_m / field_->resolution_m + 1e-9));
+    for (const auto& [di, dj] : slope_disc_) slope_d2_ += di * di;
     max_slope_tan_ = std::tan(rules.max_slope_deg * M_PI / 180.0);
     cache_.assign(static_cast<std::size_t>(field_->nx) * static_cast<std::size_t>(field_->ny), 0);
 }
@@ -92,25 +94,44 @@ TruthClass TruthTerrain::compute(int i, int j) const
         high = std::max(high, h);
     }
     if (z - low >= rules_.max_step_m - kHeightTolerance) return TruthClass::obstacle;
-    // Least-squares plane z = c0 + c1 dx + c2 dy over the slope disc.
-    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d atz = Eigen::Vector3d::Zero();
-    int n = 0;
-    for (const auto& [di, dj] : slope_disc_) {
-        const int a = i + di, b = j + dj;
-        if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
-        const double h = f.at(a, b);
-        if (!std::isfinite(h)) continue;
-        const Eigen::Vector3d row(1.0, di * f.resolution_m, dj * f.resolution_m);
-        ata += row * row.transpose();
-        atz += row * (h - z);
-        ++n;
+    // Least-squares plane z = c0 + c1 dx + c2 dy over the slope disc. Over the whole disc
+    // (symmetric: the sums of dx, dy and dx dy vanish) the gradient is sum(d h) / sum(d^2);
+    // a disc cut by the field's edge or a missing height takes the general solve.
+    double sum_i = 0.0, sum_j = 0.0;
+    std::size_t n = 0;
+    const bool inside = i - slope_reach_ >= 0 && i + slope_reach_ < f.nx && j - slope_reach_ >= 0 && j + slope_reach_ < f.ny;
+    if (inside) {
+        for (const auto& [di, dj] : slope_disc_) {
+            const double h = f.at(i + di, j + dj);
+            if (!std::isfinite(h)) break;
+            sum_i += di * (h - z);
+            sum_j += dj * (h - z);
+            ++n;
+        }
     }
-    if (n >= 3) {
-        const Eigen::Vector3d c = ata.ldlt().solve(atz);
-        if (std::isfinite(c[1]) && std::isfinite(c[2]) && std::hypot(c[1], c[2]) > max_slope_tan_)
-            return TruthClass::obstacle;
+    double gradient = 0.0;
+    if (n == slope_disc_.size()) {
+        gradient = std::hypot(sum_i, sum_j) / (slope_d2_ * f.resolution_m);
+    } else {
+        Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d atz = Eigen::Vector3d::Zero();
+        int used = 0;
+        for (const auto& [di, dj] : slope_disc_) {
+            const int a = i + di, b = j + dj;
+            if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
+            const double h = f.at(a, b);
+            if (!std::isfinite(h)) continue;
+            const Eigen::Vector3d row(1.0, di * f.resolution_m, dj * f.resolution_m);
+            ata += row * row.transpose();
+            atz += row * (h - z);
+            ++used;
+        }
+        if (used >= 3) {
+            const Eigen::Vector3d c = ata.ldlt().solve(atz);
+            if (std::isfinite(c[1]) && std::isfinite(c[2])) gradient = std::hypot(c[1], c[2]);
+        }
     }
+    if (gradient > max_slope_tan_) return TruthClass::obstacle;
     if (high - z >= rules_.max_drop_m - kHeightTolerance) return TruthClass::negative;
     return TruthClass::traversable;
 }

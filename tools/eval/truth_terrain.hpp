@@ -51,6 +51,8 @@ private:
     TruthRules rules_;
     std::vector<std::pair<int, int>> step_disc_;   // offsets within step_radius_m
     std::vector<std::pair<int, int>> slope_disc_;  // offsets within slope_radius_m
+    int slope_reach_ = 0;                          // its radius in columns
+    double slope_d2_ = 0;                          // sum of di^2 over it (= of dj^2)
     double max_slope_tan_ = 0;
     mutable std::vector<uint8_t> cache_;           // TruthClass + 1, 0 = not computed
 };
