@@ -41,7 +41,7 @@ struct ArcVerdict
     double clear_distance_m = 0;  // length_m when nothing is hit
     double unknown_fraction = 0;  // over the cells swept before clear_distance_m
     double mean_cost = 0;         // over the known ones among them
-    double merit = 0;             // 0 when blocked
+    double merit = 0;             // (clear / length) (1 - unknown_fraction unknown_weight) (1 - mean_cost)
     bool blocked = false;
 };
 
@@ -53,8 +53,8 @@ public:
     // Throws std::invalid_argument on a bad config (count < 1, curvature that makes the
     // footprint turn inside itself, non-positive length or resolution...).
     CandidateArcs(const ArcSetConfig& config, const Footprint& footprint, double resolution_m);
-    // One verdict per arc, in order of curvature (right to left); best = the highest merit,
-    // -1 when all are blocked. The layers must belong to grid (same nx, ny).
+    // One verdict per arc, in order of curvature (right to left); best = the arc not blocked
+    // with the highest merit, -1 when all are blocked. The layers must belong to grid.
     void judge(const TerrainGrid& grid, const TraversabilityLayers& layers, std::vector<ArcVerdict>& out,
                int& best) const;
 
@@ -72,7 +72,10 @@ private:
     Footprint footprint_;
     double resolution_m_;
     std::vector<double> curvatures_;
-    std::vector<std::vector<SweptCell>> sweeps_;  // sorted by s
+    std::vector<std::vector<SweptCell>> sweeps_;  // cells of half the resolution, sorted by s
+    mutable std::vector<uint32_t> seen_;          // per map cell: the last arc that counted it
+    mutable std::vector<int32_t> cell_of_;        // per swept fine cell: its map cell
+    mutable uint32_t stamp_ = 0;
 };
 
 // Where the footprint of a vehicle driving s_m along an arc of curvature k covers point p

@@ -1,6 +1,6 @@
 // Per cell of a terrain map: is it traversable, an obstacle, a negative obstacle (ditch,
-// drop-off) or unknown, with a cost and the quantities behind the verdict. No state: the
-// same grid and distances give the same layers.
+// drop-off) or unknown, with a cost and the quantities behind the verdict. The same grid
+// and odometer give the same layers (the class keeps only working memory).
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,7 @@ struct ClassifierConfig
     double step_radius_m = 0.3;       // steps are measured against cells within this of the cell
     double max_slope_deg = 25;        // a steeper neighbourhood is an obstacle
     double slope_radius_m = 0.5;      // the plane for the slope is fitted over this radius
+    double ground_radius_m = 1.5;     // the local ground: which side of a step is the obstacle
     double max_roughness_m = 0.15;    // a cell's height spread (sd) that costs 1
     double min_support_samples = 2;   // samples a cell's top (or bottom) needs to count as a step
     double max_age_s = 60;            // data this old is UNKNOWN (certainty 0)
@@ -48,11 +49,26 @@ public:
     explicit CellClassifier(const ClassifierConfig& config);  // throws std::invalid_argument on a bad config
     // The grid must pass check_grid; out is resized to it. odometer says how far the vehicle
     // has driven since each cell's newest sample (the decay of certainty).
-    void classify(const TerrainGrid& grid, const Odometer& odometer, TraversabilityLayers& out) const;
+    void classify(const TerrainGrid& grid, const Odometer& odometer, TraversabilityLayers& out);
     const ClassifierConfig& config() const { return config_; }
 
 private:
     ClassifierConfig config_;
+    // Per-cell working layers, kept between calls so an update allocates nothing.
+    std::vector<float> top_, bottom_, lowest_, highest_, tmp_;
+    std::vector<uint8_t> edge_;
+    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_;
+    std::vector<float> window_;
 };
+
+}  // namespace ugv::traverse
+
+namespace ugv::traverse {
+
+// The slope the classifier reports, written plainly: the least-squares plane through the
+// means of the cells (p, q) with counts[p * ny + q] true in the square window of half-width
+// half_width around (i, j), and its steepest angle in degrees; NaN with fewer than half the
+// window's cells or cells on a line. The classifier's separable sums are tested against it.
+double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& counts, int i, int j, int half_width);
 
 }  // namespace ugv::traverse

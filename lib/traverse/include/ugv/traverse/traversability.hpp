@@ -24,7 +24,8 @@ struct TraverseCounters
 {
     uint64_t maps_in = 0;
     uint64_t maps_malformed = 0;      // failed check_grid: dropped, nothing changed
-    uint64_t maps_out_of_order = 0;   // utime not after the last map's: dropped
+    uint64_t maps_duplicate = 0;      // the same utime as the last map's: dropped
+    uint64_t time_restarts = 0;       // utime before the last map's (a log played again): the odometer restarts
     uint64_t obstacle_cells = 0;      // in the last map
     uint64_t negative_obstacle_cells = 0;
     uint64_t unknown_cells = 0;
@@ -36,7 +37,8 @@ struct TraverseCounters
     {
         f("maps_in", maps_in);
         f("maps_malformed", maps_malformed);
-        f("maps_out_of_order", maps_out_of_order);
+        f("maps_duplicate", maps_duplicate);
+        f("time_restarts", time_restarts);
         f("obstacle_cells", obstacle_cells);
         f("negative_obstacle_cells", negative_obstacle_cells);
         f("unknown_cells", unknown_cells);
@@ -56,8 +58,8 @@ class Traversability
 {
 public:
     explicit Traversability(const TraverseConfig& config);  // throws std::invalid_argument
-    // Analyses one map. Returns false (counted, result unchanged) for a malformed or
-    // out-of-order map; why() then says which check failed.
+    // Analyses one map. Returns false (counted, result unchanged) for a malformed map or a
+    // repeat of the last one; why() then says which check failed.
     bool update(const TerrainGrid& grid);
     const TraverseResult& result() const { return result_; }
     const TraverseCounters& counters() const { return counters_; }
@@ -67,7 +69,7 @@ public:
 private:
     TraverseConfig config_;
     CellClassifier classifier_;
-    std::vector<CandidateArcs> arcs_by_resolution_;  // built for the first grid's resolution
+    std::vector<CandidateArcs> arcs_;  // zero or one: built for the resolution of the maps
     double arcs_resolution_m_ = 0;
     Odometer odometer_;
     int64_t last_utime_us_ = 0;

@@ -1,0 +1,206 @@
+#include "ugv/traverse/candidate_arcs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace ugv::traverse {
+
+namespace {
+
+// The body origin after driving s along an arc of curvature k, and its heading.
+struct ArcPose { double x, y, heading; };
+ArcPose arc_pose(double k, double s)
+{
+    if (std::abs(k) < 1e-9) return {s, 0.0, 0.0};
+    const double a = k * s;
+    return {std::sin(a) / k, (1.0 - std::cos(a)) / k, a};
+}
+
+bool inside_footprint(const Footprint& f, double half_width_m, double x, double y)
+{
+    return x >= f.rear_x_m && x <= f.front_x_m && std::abs(y) <= half_width_m;
+}
+
+// The map cell under each swept fine cell (-1: outside the map). Body -> map: turned by
+// +residual_yaw (cos c, sin s), then cells from the map's corner. One pass that vectorises;
+// the judging loop that follows reads the cells in order.
+void map_cells(const std::vector<CandidateArcs::SweptCell>& sweep, const TerrainGrid& g, float c, float s, float inv,
+               std::vector<int32_t>& cell_of)
+{
+    cell_of.resize(sweep.size());
+    const float ox = static_cast<float>(g.origin_x_m), oy = static_cast<float>(g.origin_y_m);
+    const float nx = static_cast<float>(g.nx), ny = static_cast<float>(g.ny);
+    const int32_t stride = g.ny;
+    for (std::size_t f = 0; f < sweep.size(); ++f) {
+        const float x = sweep[f].x_m, y = sweep[f].y_m;
+        const float fi = (c * x - s * y - ox) * inv, fj = (s * x + c * y - oy) * inv;
+        const bool inside = fi >= 0.0f && fj >= 0.0f && fi < nx && fj < ny;
+        // Truncation is floor for the non-negative values kept.
+        const int32_t cell = static_cast<int32_t>(inside ? fi : 0.0f) * stride + static_cast<int32_t>(inside ? fj : 0.0f);
+        cell_of[f] = inside ? cell : -1;
+    }
+}
+
+}  // namespace
+
+double first_cover_s(double k, const Footprint& f, double margin_m, double max_s_m, const Eigen::Vector2d& p,
+                     double step_m)
+{
+    const double half = 0.5 * f.width_m + margin_m;
+    const int steps = static_cast<int>(std::ceil(max_s_m / step_m));
+    for (int n = 0; n <= steps; ++n) {
+        const double s = std::min(max_s_m, n * step_m);
+        const ArcPose a = arc_pose(k, s);
+        const double dx = p.x() - a.x, dy = p.y() - a.y;
+        const double c = std::cos(a.heading), sn = std::sin(a.heading);
+        if (inside_footprint(f, half, c * dx + sn * dy, -sn * dx + c * dy)) return s;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+CandidateArcs::CandidateArcs(const ArcSetConfig& c, const Footprint& f, double resolution_m)
+    : config_(c), footprint_(f), resolution_m_(resolution_m)
+{
+    auto finite_positive = [](double v, const char* what) {
+        if (!(std::isfinite(v) && v > 0)) throw std::invalid_argument(std::string(what) + " must be finite and positive");
+    };
+    if (c.count < 1 || c.count > 201) throw std::invalid_argument("arc count must be in [1, 201]");
+    finite_positive(c.length_m, "arc length_m");
+    finite_positive(resolution_m, "resolution");
+    finite_positive(f.width_m, "footprint width_m");
+    if (!(std::isfinite(c.margin_m) && c.margin_m >= 0)) throw std::invalid_argument("margin_m must be >= 0");
+    if (!(std::isfinite(f.rear_x_m) && std::isfinite(f.front_x_m) && f.rear_x_m <= 0 && f.front_x_m > 0))
+        throw std::invalid_argument("footprint: rear_x_m must be <= 0 < front_x_m");
+    if (!(std::isfinite(c.max_curvature_per_m) && c.max_curvature_per_m >= 0))
+        throw std::invalid_argument("max_curvature_per_m must be >= 0");
+    const double half = 0.5 * f.width_m + c.margin_m;
+    // The turning centre must lie outside the footprint, or the vehicle spins in place.
+    if (c.max_curvature_per_m * half >= 1.0)
+        throw std::invalid_argument("max_curvature_per_m: the turning radius is inside the swept width");
+    if (c.count > 1 && c.max_curvature_per_m == 0) throw std::invalid_argument("several arcs need max_curvature_per_m > 0");
+    if (!(c.max_unknown_fraction >= 0 && c.max_unknown_fraction <= 1))
+        throw std::invalid_argument("max_unknown_fraction must be in [0, 1]");
+    if (!(c.unknown_weight >= 0 && c.unknown_weight <= 1)) throw std::invalid_argument("unknown_weight must be in [0, 1]");
+    if (c.length_m / resolution_m > 4000) throw std::invalid_argument("arc length_m is more than 4000 cells");
+
+    for (int a = 0; a < c.count; ++a)
+        curvatures_.push_back(c.count == 1 ? 0.0 : -c.max_curvature_per_m + 2.0 * c.max_curvature_per_m * a / (c.count - 1));
+
+    // Sweep each arc once: march along it in steps that move the footprint's farthest point
+    // by at most a quarter of a fine cell, and mark the fine cells its outline passes over
+    // (and, at the start, those inside it) with the first s.
+    const double fine = 0.5 * resolution_m;
+    const double reach = std::hypot(std::max(f.front_x_m, -f.rear_x_m), half);
+    for (double k : curvatures_) {
+        const double lead = std::abs(k) < 1e-9 ? 1.0 : (1.0 / std::abs(k) + reach) * std::abs(k);
+        const double ds = std::min(0.25 * fine / lead, 0.25 * fine);
+        std::unordered_map<uint64_t, float> first;  // fine cell key -> s
+        auto mark = [&](double x, double y, double s) {
+            const auto ix = static_cast<int32_t>(std::floor(x / fine)), iy = static_cast<int32_t>(std::floor(y / fine));
+            const uint64_t key = (static_cast<uint64_t>(static_cast<uint32_t>(ix)) << 32) | static_cast<uint32_t>(iy);
+            first.emplace(key, static_cast<float>(s));
+        };
+        auto outline = [&](const ArcPose& a, double s, bool interior) {
+            const double ch = std::cos(a.heading), sh = std::sin(a.heading);
+            auto put = [&](double bx, double by) { mark(a.x + ch * bx - sh * by, a.y + sh * bx + ch * by, s); };
+            const double len = f.front_x_m - f.rear_x_m;
+            const int nl = static_cast<int>(std::ceil(len / (0.5 * fine))), nw = static_cast<int>(std::ceil(2 * half / (0.5 * fine)));
+            for (int u = 0; u <= nl; ++u) {
+                const double bx = f.rear_x_m + len * u / nl;
+                if (interior) {
+                    for (int v = 0; v <= nw; ++v) put(bx, -half + 2 * half * v / nw);
+                } else {
+                    put(bx, -half);
+                    put(bx, half);
+                }
+            }
+            for (int v = 0; v <= nw; ++v) {
+                put(f.front_x_m, -half + 2 * half * v / nw);
+                put(f.rear_x_m, -half + 2 * half * v / nw);
+            }
+        };
+        const int steps = static_cast<int>(std::ceil(c.length_m / ds));
+        for (int n = 0; n <= steps; ++n) {
+            const double s = std::min(c.length_m, n * ds);
+            outline(arc_pose(k, s), s, n == 0);
+        }
+        std::vector<SweptCell> cells;
+        cells.reserve(first.size());
+        for (const auto& [key, s] : first) {
+            const auto ix = static_cast<int32_t>(static_cast<uint32_t>(key >> 32));
+            const auto iy = static_cast<int32_t>(static_cast<uint32_t>(key & 0xffffffffu));
+            cells.push_back({static_cast<float>((ix + 0.5) * fine), static_cast<float>((iy + 0.5) * fine), s});
+        }
+        std::sort(cells.begin(), cells.end(), [](const SweptCell& a, const SweptCell& b) {
+            return a.s_m != b.s_m ? a.s_m < b.s_m : (a.x_m != b.x_m ? a.x_m < b.x_m : a.y_m < b.y_m);
+        });
+        sweeps_.push_back(std::move(cells));
+    }
+}
+
+void CandidateArcs::judge(const TerrainGrid& g, const TraversabilityLayers& layers, std::vector<ArcVerdict>& out,
+                          int& best) const
+{
+    const std::size_t n = g.cells();
+    if (seen_.size() != n) {
+        seen_.assign(n, 0);
+        stamp_ = 0;
+    }
+    // Body -> map: turned by +residual_yaw, then cells from the map's corner.
+    const double c = std::cos(g.residual_yaw_rad), sn = std::sin(g.residual_yaw_rad);
+    const double inv = 1.0 / g.resolution_m;
+    out.assign(sweeps_.size(), ArcVerdict{});
+    best = -1;
+    for (std::size_t a = 0; a < sweeps_.size(); ++a) {
+        if (++stamp_ == 0) {  // wrapped: forget every mark
+            std::fill(seen_.begin(), seen_.end(), 0u);
+            stamp_ = 1;
+        }
+        ArcVerdict& v = out[a];
+        v.curvature_per_m = curvatures_[a];
+        v.clear_distance_m = config_.length_m;
+        const std::vector<SweptCell>& sweep = sweeps_[a];
+        map_cells(sweep, g, static_cast<float>(c), static_cast<float>(sn), static_cast<float>(inv), cell_of_);
+        // Cells counted once each; outside the map, a fine cell is a quarter of an unknown one.
+        double swept = 0, unknown = 0;
+        int known = 0;
+        double cost = 0.0;
+        for (std::size_t f = 0; f < sweep.size(); ++f) {
+            const int32_t cell = cell_of_[f];
+            if (cell < 0) {
+                swept += 0.25;
+                unknown += 0.25;
+                continue;
+            }
+            const std::size_t k = static_cast<std::size_t>(cell);
+            if (seen_[k] == stamp_) continue;
+            seen_[k] = stamp_;
+            const CellClass cls = layers.cell_class[k];
+            if (cls == CellClass::obstacle || cls == CellClass::negative_obstacle) {
+                v.clear_distance_m = sweep[f].s_m;
+                v.blocked = true;
+                break;
+            }
+            swept += 1;
+            if (cls == CellClass::unknown) {
+                unknown += 1;
+            } else {
+                ++known;
+                cost += layers.cost[k];
+            }
+        }
+        v.unknown_fraction = swept > 0 ? unknown / swept : 1.0;
+        v.mean_cost = known > 0 ? cost / known : 0.0;
+        if (config_.unknown_policy == UnknownPolicy::cautious && v.unknown_fraction > config_.max_unknown_fraction)
+            v.blocked = true;
+        v.merit = (v.clear_distance_m / config_.length_m) * (1.0 - v.unknown_fraction * config_.unknown_weight) *
+                  (1.0 - v.mean_cost);
+        if (!v.blocked && (best < 0 || v.merit > out[static_cast<std::size_t>(best)].merit)) best = static_cast<int>(a);
+    }
+}
+
+}  // namespace ugv::traverse

@@ -1,0 +1,316 @@
+#include "ugv/traverse/cell_classifier.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ugv::traverse {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+// Bits of a cell's flags: a step up to it, a drop down to it, a step obstacle within the
+// slope window (the plane there says nothing about the ground's slope).
+constexpr uint8_t kUp = 1, kDown = 2, kObstacleNear = 4;
+
+// A radius as the half-width of the square window of cells it covers (at least 1).
+int half_width(double radius_m, double resolution_m)
+{
+    return std::max(1, static_cast<int>(std::floor(radius_m / resolution_m + 1e-9)));
+}
+
+// The highest sample of a cell when enough samples stand near it, else the mean: one
+// stray return does not make a cell tall. Samples near the extreme, estimated from the
+// (weighted) variance: a fraction p of the samples at distance d from the mean gives a
+// variance of about p d^2, so p n ~ n var / d^2 (a face spread evenly gives n/3).
+float supported_extreme(float mean, float extreme, float variance, int32_t count, double min_support)
+{
+    const double d = static_cast<double>(extreme) - mean;
+    if (std::abs(d) < 1e-4) return extreme;
+    const double var = std::isfinite(variance) ? variance : 0.0;
+    const double near_extreme = count * var / (d * d);
+    return near_extreme >= min_support ? extreme : mean;
+}
+
+// out[k] = min (or max) of in over the square window of half-width h around k; cells
+// outside the grid are skipped. Separable: rows, then columns; each pass a running
+// min/max over whole rows so that it vectorises.
+template <bool kMin>
+void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::vector<float>& tmp,
+                    std::vector<float>& out)
+{
+    const auto pick = [](float a, float b) { return kMin ? (b < a ? b : a) : (b > a ? b : a); };
+    const std::size_t w = static_cast<std::size_t>(ny);
+    tmp.resize(in.size());
+    out.resize(in.size());
+    for (int i = 0; i < nx; ++i) {
+        const float* __restrict row = &in[i * w];
+        float* __restrict t = &tmp[i * w];
+        for (std::size_t j = 0; j < w; ++j) t[j] = row[j];
+        for (int d = 1; d <= h; ++d) {
+            const std::size_t dd = static_cast<std::size_t>(std::min(d, ny));
+            for (std::size_t j = 0; j + dd < w; ++j) t[j] = pick(t[j], row[j + dd]);
+            for (std::size_t j = dd; j < w; ++j) t[j] = pick(t[j], row[j - dd]);
+        }
+    }
+    for (int i = 0; i < nx; ++i) {
+        float* __restrict o = &out[i * w];
+        const float* __restrict t0 = &tmp[i * w];
+        for (std::size_t j = 0; j < w; ++j) o[j] = t0[j];
+        for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); ++p) {
+            if (p == i) continue;
+            const float* __restrict t = &tmp[static_cast<std::size_t>(p) * w];
+            for (std::size_t j = 0; j < w; ++j) o[j] = pick(o[j], t[j]);
+        }
+    }
+}
+
+// The slope of the least-squares plane z = a + b i + c j from its centred moments (cells
+// as units); NaN when the cells are (nearly) on a line.
+float plane_slope_deg(double cii, double cjj, double cij, double ciz, double cjz, double count, double resolution_m)
+{
+    const double det = cii * cjj - cij * cij;
+    if (det < 1e-6 * count * count) return kNaN;
+    const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
+    return std::atan(static_cast<float>(std::sqrt(gi * gi + gj * gj) / resolution_m)) * static_cast<float>(180.0 / M_PI);
+}
+
+// (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
+// One column offset d of the slope's row pass: the row's weights w, heights z and obstacle
+// flags o, shifted by d, added into the five row sums and the obstacle count.
+[[gnu::noinline]] void add_row_tap(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo,
+                 float* __restrict rw, float* __restrict rwq, float* __restrict rwqq, float* __restrict rwz,
+                 float* __restrict rwzq, float* __restrict ro, int d, int ny)
+{
+    const float fd = static_cast<float>(d);
+    const int from = std::max(0, -d), to = std::max(0, ny - std::max(0, d));
+    for (int j = from; j < to; ++j) {
+        const float wv = lw[j + d], zv = lz[j + d] * wv;
+        rw[j] += wv;
+        rwq[j] += fd * wv;
+        rwqq[j] += fd * fd * wv;
+        rwz[j] += zv;
+        rwzq[j] += fd * zv;
+        ro[j] += lo[j + d];
+    }
+}
+
+// One row offset fd of the column pass: a row's sums added into the window's moments.
+[[gnu::noinline]] void add_column_tap(const float* __restrict rw, const float* __restrict rwq,
+                                      const float* __restrict rwqq, const float* __restrict rwz,
+                                      const float* __restrict rwzq, const float* __restrict ro, float* __restrict s0,
+                                      float* __restrict sp, float* __restrict spp, float* __restrict sq,
+                                      float* __restrict sqq, float* __restrict spq, float* __restrict sz,
+                                      float* __restrict szp, float* __restrict szq, float* __restrict so, float fd,
+                                      std::size_t w)
+{
+    for (std::size_t j = 0; j < w; ++j) {
+        s0[j] += rw[j];
+        sp[j] += fd * rw[j];
+        spp[j] += fd * fd * rw[j];
+        sq[j] += rwq[j];
+        sqq[j] += rwqq[j];
+        spq[j] += fd * rwq[j];
+        sz[j] += rwz[j];
+        szp[j] += fd * rwz[j];
+        szq[j] += rwzq[j];
+        so[j] += ro[j];
+    }
+}
+
+}  // namespace
+
+void TraversabilityLayers::reset(int nx_, int ny_)
+{
+    nx = nx_;
+    ny = ny_;
+    const std::size_t n = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+    cell_class.assign(n, CellClass::unknown);
+    for (auto* v : {&cost, &step_m, &drop_m, &slope_deg, &roughness_m, &span_m}) v->assign(n, kNaN);
+    certainty.assign(n, 0.0f);
+}
+
+CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
+{
+    auto positive = [](double v, const char* what) {
+        if (!(std::isfinite(v) && v > 0)) throw std::invalid_argument(std::string(what) + " must be finite and positive");
+    };
+    positive(c.max_step_m, "max_step_m");
+    positive(c.max_drop_m, "max_drop_m");
+    positive(c.step_radius_m, "step_radius_m");
+    positive(c.slope_radius_m, "slope_radius_m");
+    positive(c.ground_radius_m, "ground_radius_m");
+    positive(c.max_roughness_m, "max_roughness_m");
+    positive(c.max_age_s, "max_age_s");
+    positive(c.max_driven_m, "max_driven_m");
+    if (!(c.max_slope_deg > 0 && c.max_slope_deg < 90)) throw std::invalid_argument("max_slope_deg must be in (0, 90)");
+    if (!(c.min_support_samples >= 1 && c.min_support_samples <= 1000))
+        throw std::invalid_argument("min_support_samples must be in [1, 1000]");
+}
+
+void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, TraversabilityLayers& out)
+{
+    const int nx = g.nx, ny = g.ny;
+    const std::size_t n = g.cells();
+    const ClassifierConfig& c = config_;
+    out.reset(nx, ny);
+    top_.assign(n, kNaN);
+    bottom_.assign(n, kNaN);
+
+    // 1. What is known, how certain, and each known cell's supported top and bottom.
+    const bool have_age = g.age_s.size() == n;
+    float memo_age = kNaN;  // cells fused from one cloud share an age
+    double memo_driven = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
+        double certainty = 1.0;
+        if (have_age && std::isfinite(g.age_s[k])) {
+            const float age = g.age_s[k];
+            if (age != memo_age) {
+                memo_age = age;
+                memo_driven = odometer.driven_since(age);
+            }
+            certainty = std::max(0.0, 1.0 - age / c.max_age_s) * std::max(0.0, 1.0 - memo_driven / c.max_driven_m);
+        }
+        out.certainty[k] = static_cast<float>(certainty);
+        if (certainty <= 0.0) continue;  // decayed: UNKNOWN
+        const float var = std::isfinite(g.variance_z_m2[k]) ? g.variance_z_m2[k] : 0.0f;
+        top_[k] = supported_extreme(g.mean_z_m[k], g.max_z_m[k], var, g.count[k], c.min_support_samples);
+        bottom_[k] = supported_extreme(g.mean_z_m[k], g.min_z_m[k], var, g.count[k], c.min_support_samples);
+        out.roughness_m[k] = std::sqrt(var);
+        out.span_m[k] = g.max_z_m[k] - g.min_z_m[k];
+    }
+
+    // 2. Steps and drops against the cells within step_radius (the cell itself included):
+    // step = own top - lowest bottom around; drop = highest mean around - own bottom.
+    const int hs = half_width(c.step_radius_m, g.resolution_m);
+    tmp_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(bottom_[k]) ? kInf : bottom_[k];
+    window_extreme<true>(tmp_, nx, ny, hs, window_, lowest_);
+    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(top_[k]) ? -kInf : g.mean_z_m[k];
+    window_extreme<false>(tmp_, nx, ny, hs, window_, highest_);
+    edge_.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (std::isnan(top_[k])) continue;
+        out.step_m[k] = std::max(0.0f, top_[k] - lowest_[k]);
+        out.drop_m[k] = std::max(0.0f, highest_[k] - bottom_[k]);
+        edge_[k] = static_cast<uint8_t>((out.step_m[k] >= c.max_step_m ? kUp : 0) | (out.drop_m[k] >= c.max_drop_m ? kDown : 0));
+    }
+
+    // 3. Step classes. A cell at a step is an obstacle when its top stands max_step above
+    // the local ground, a negative obstacle when its bottom lies max_drop below it: the side
+    // of a step that differs from its surroundings is the obstacle. The local ground is the
+    // median of the means within ground_radius (a box or ditch narrower than that radius is
+    // the minority).
+    const int hg = half_width(c.ground_radius_m, g.resolution_m);
+    std::vector<float>& around = window_;
+    // Does a neighbour also step up (kUp) or down (kDown)? A cell of fewer samples than
+    // min_support_samples needs one: one stray return alone is not an obstacle.
+    auto neighbour_has = [&](int i, int j, uint8_t bit) {
+        for (int p = std::max(0, i - 1); p <= std::min(nx - 1, i + 1); ++p)
+            for (int q = std::max(0, j - 1); q <= std::min(ny - 1, j + 1); ++q)
+                if ((p != i || q != j) && (edge_[static_cast<std::size_t>(p) * ny + q] & bit)) return true;
+        return false;
+    };
+    for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
+            if (std::isnan(top_[k])) continue;
+            CellClass cls = CellClass::traversable;
+            if (edge_[k] & (kUp | kDown)) {
+                around.clear();
+                // Every other row and column of the window: the median of a quarter of the
+                // cells is as good a level and four times cheaper.
+                for (int p = std::max(0, i - hg); p <= std::min(nx - 1, i + hg); p += 2)
+                    for (int q = std::max(0, j - hg); q <= std::min(ny - 1, j + hg); q += 2) {
+                        const std::size_t m = static_cast<std::size_t>(p) * ny + q;
+                        if (!std::isnan(top_[m])) around.push_back(g.mean_z_m[m]);
+                    }
+                const auto mid = around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2);
+                std::nth_element(around.begin(), mid, around.end());
+                const float ground = *mid;
+                const bool few = g.count[k] < c.min_support_samples;
+                if ((edge_[k] & kUp) && top_[k] - ground >= c.max_step_m && !(few && !neighbour_has(i, j, kUp)))
+                    cls = CellClass::obstacle;
+                else if ((edge_[k] & kDown) && ground - bottom_[k] >= c.max_drop_m &&
+                         !(few && !neighbour_has(i, j, kDown)))
+                    cls = CellClass::negative_obstacle;
+            }
+            out.cell_class[k] = cls;
+        }
+    }
+
+    // 4. Slope: the plane fitted to the means of the cells within slope_radius that are not
+    // step obstacles (a box would tilt the ground beside it). Separable: along each row,
+    // over the window's columns, the sums of w, w dq, w dq^2, w z, w z dq (w = 1 for a cell
+    // that counts, dq its column offset, z its height relative to the vehicle); then down
+    // the window's rows the plane's centred moments, and the obstacles in the window.
+    // slope_reference() is the same fit written window by window.
+    const int hp = half_width(c.slope_radius_m, g.resolution_m);
+    enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
+    const std::size_t w = static_cast<std::size_t>(ny);
+    row_sums_.assign(n * kRowSums, 0.0f);
+    auto rows = [&](int which, int i) { return &row_sums_[(static_cast<std::size_t>(which) * nx + i) * w]; };
+    const float z0 = static_cast<float>(g.position_m.z());
+    for (int i = 0; i < nx; ++i) {
+        line_w_.assign(w, 0.0f);
+        line_z_.assign(w, 0.0f);
+        line_o_.assign(w, 0.0f);
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * w + j;
+            if (std::isnan(top_[k])) continue;
+            if (out.cell_class[k] != CellClass::traversable) {
+                line_o_[j] = 1.0f;
+                continue;
+            }
+            line_w_[j] = 1.0f;
+            line_z_[j] = g.mean_z_m[k] - z0;
+        }
+        for (int d = -hp; d <= hp; ++d)
+            add_row_tap(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
+                        rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
+    }
+    const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
+    for (int i = 0; i < nx; ++i) {
+        // The window's moments about its centre cell, for each cell of row i.
+        moments_.assign(w * 10, 0.0f);
+        float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];
+        float *sqq = &moments_[4 * w], *spq = &moments_[5 * w], *sz = &moments_[6 * w], *szp = &moments_[7 * w];
+        float *szq = &moments_[8 * w], *so = &moments_[9 * w];
+        for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
+            add_column_tap(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
+                           sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * w + j;
+            if (std::isnan(top_[k])) continue;
+            if (so[j] > 0.5f) edge_[k] |= kObstacleNear;
+            const double c0 = s0[j];
+            if (c0 < min_cells) continue;  // too few cells for a plane
+            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
+            out.slope_deg[k] = plane_slope_deg(spp[j] - c0 * mp * mp, sqq[j] - c0 * mq * mq, spq[j] - c0 * mp * mq,
+                                               szp[j] - c0 * mp * mz, szq[j] - c0 * mq * mz, c0, g.resolution_m);
+        }
+    }
+
+    // 5. Too steep is an obstacle (where no step obstacle spoils the plane); the rest costs
+    // the largest of its step, drop, roughness and slope against their limits.
+    for (std::size_t k = 0; k < n; ++k) {
+        if (std::isnan(top_[k])) continue;
+        CellClass& cls = out.cell_class[k];
+        if (cls == CellClass::traversable && !(edge_[k] & kObstacleNear) && out.slope_deg[k] > c.max_slope_deg)
+            cls = CellClass::obstacle;
+        if (cls != CellClass::traversable) {
+            out.cost[k] = 1.0f;
+            continue;
+        }
+        double cost = std::max(out.step_m[k] / c.max_step_m, out.drop_m[k] / c.max_drop_m);
+        cost = std::max(cost, out.roughness_m[k] / c.max_roughness_m);
+        if (std::isfinite(out.slope_deg[k])) cost = std::max(cost, out.slope_deg[k] / c.max_slope_deg);
+        out.cost[k] = static_cast<float>(std::min(1.0, cost));
+    }
+}
+
+}  // namespace ugv::traverse

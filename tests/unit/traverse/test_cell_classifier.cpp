@@ -1,0 +1,252 @@
+// Known-answer maps for the cell classes: flat, a box, a wall cell with a low mean but a
+// high max, one stray sample, a ditch, slopes below and above the limit, aged data.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "ugv_test/terrain_grid_builder.hpp"
+#include "ugv/traverse/cell_classifier.hpp"
+
+using namespace ugv::traverse;
+using namespace ugv::traverse::test;
+
+namespace {
+
+TraversabilityLayers classify(const TerrainGrid& g, const Odometer& odo = Odometer{})
+{
+    CellClassifier c{ClassifierConfig{}};
+    TraversabilityLayers out;
+    c.classify(g, odo, out);
+    return out;
+}
+
+int count_class(const TraversabilityLayers& l, CellClass c)
+{
+    int n = 0;
+    for (CellClass v : l.cell_class) n += v == c ? 1 : 0;
+    return n;
+}
+
+std::size_t at(const TerrainGrid& g, double x, double y)
+{
+    const int i = static_cast<int>(std::floor((x - g.origin_x_m) / g.resolution_m));
+    const int j = static_cast<int>(std::floor((y - g.origin_y_m) / g.resolution_m));
+    return static_cast<std::size_t>(i) * g.ny + j;
+}
+
+constexpr double kGround = 1.5;  // not 0: nothing may assume the ground is at 0
+
+}  // namespace
+
+TEST_CASE("a flat map is all traversable at a low cost")
+{
+    TerrainGrid g = empty_grid();
+    fill(g, [](double, double) { return kGround; });
+    const TraversabilityLayers l = classify(g);
+    CHECK(count_class(l, CellClass::traversable) == static_cast<int>(g.cells()));
+    float worst = 0;
+    for (float c : l.cost) worst = std::max(worst, c);
+    CHECK(worst < 0.5f);
+    CHECK(l.slope_deg[at(g, 10, 0)] < 3.0f);
+}
+
+TEST_CASE("unknown cells stay unknown and do not disturb their neighbours")
+{
+    TerrainGrid g = empty_grid(40, 40);
+    fill(g, [](double, double) { return kGround; });
+    const std::size_t hole = at(g, 3, 0);
+    g.count[hole] = 0;
+    g.mean_z_m[hole] = g.max_z_m[hole] = g.min_z_m[hole] = g.variance_z_m2[hole] = NAN;
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[hole] == CellClass::unknown);
+    CHECK(std::isnan(l.cost[hole]));
+    CHECK(count_class(l, CellClass::traversable) == static_cast<int>(g.cells()) - 1);
+}
+
+TEST_CASE("a box is an obstacle and the ground around it is not")
+{
+    TerrainGrid g = empty_grid();
+    // 0.6 x 0.6 m, 0.5 m tall, 8 m ahead.
+    auto box = [](double x, double y) { return x >= 8.0 && x < 8.6 && y >= -0.3 && y < 0.3; };
+    fill(g, [&](double x, double y) { return kGround + (box(x, y) ? 0.5 : 0.0); });
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[at(g, 8.3, 0.1)] == CellClass::obstacle);
+    CHECK(l.cell_class[at(g, 8.1, -0.2)] == CellClass::obstacle);
+    CHECK(l.step_m[at(g, 8.3, 0.1)] > 0.45f);
+    // Ground one cell away: not an obstacle, not a ditch.
+    CHECK(l.cell_class[at(g, 7.7, 0.1)] == CellClass::traversable);
+    CHECK(l.cell_class[at(g, 8.3, 0.5)] == CellClass::traversable);
+    // The box's faces fall mid-cell: 4 x 4 cells hold some of it.
+    CHECK(count_class(l, CellClass::obstacle) == 16);
+    CHECK(count_class(l, CellClass::negative_obstacle) == 0);
+}
+
+TEST_CASE("a wall's cell with a low mean but a high, well supported max is an obstacle")
+{
+    TerrainGrid g = empty_grid(60, 60);
+    fill(g, [](double, double) { return kGround; });
+    // 20 samples: 17 on the ground in front of the face, 3 up the 2.5 m face.
+    std::vector<double> z(17, kGround);
+    for (double h : {1.0, 1.8, 2.5}) z.push_back(kGround + h);
+    const std::size_t k = at(g, 5.1, 0.1);
+    set_samples(g, static_cast<int>(k / g.ny), static_cast<int>(k % g.ny), z);
+    REQUIRE(g.mean_z_m[k] - kGround < 0.3f);
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[k] == CellClass::obstacle);
+    CHECK(l.span_m[k] > 2.4f);
+}
+
+TEST_CASE("one stray sample does not make an obstacle")
+{
+    TerrainGrid g = empty_grid(60, 60);
+    fill(g, [](double, double) { return kGround; });
+    SECTION("in a well sampled cell")
+    {
+        std::vector<double> z(20, kGround);
+        z.back() = kGround + 0.6;
+        const std::size_t k = at(g, 5.1, 0.1);
+        set_samples(g, static_cast<int>(k / g.ny), static_cast<int>(k % g.ny), z);
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[k] == CellClass::traversable);
+        CHECK(count_class(l, CellClass::obstacle) == 0);
+        CHECK(l.span_m[k] > 0.59f);  // the sample is still reported
+    }
+    SECTION("alone in its cell")
+    {
+        const std::size_t k = at(g, 5.1, 0.1);
+        set_samples(g, static_cast<int>(k / g.ny), static_cast<int>(k % g.ny), {kGround + 0.6});
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[k] == CellClass::traversable);
+        CHECK(count_class(l, CellClass::obstacle) == 0);
+        CHECK(count_class(l, CellClass::negative_obstacle) == 0);
+    }
+    SECTION("two neighbouring cells of one sample each are an obstacle")
+    {
+        for (double y : {0.1, 0.3}) {
+            const std::size_t k = at(g, 5.1, y);
+            set_samples(g, static_cast<int>(k / g.ny), static_cast<int>(k % g.ny), {kGround + 0.6});
+        }
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 5.1, 0.1)] == CellClass::obstacle);
+        CHECK(l.cell_class[at(g, 5.1, 0.3)] == CellClass::obstacle);
+    }
+}
+
+TEST_CASE("a ditch is a negative obstacle")
+{
+    TerrainGrid g = empty_grid();
+    // 1 m wide, 0.4 m deep, across the path 10 m ahead (its edges fall mid-cell: the cells
+    // from 9.9 to 10.1 and 10.9 to 11.1 hold both levels).
+    fill(g, [](double x, double) { return kGround - (x >= 10.0 && x < 11.0 ? 0.4 : 0.0); });
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[at(g, 10.1, 0.1)] == CellClass::negative_obstacle);
+    CHECK(l.cell_class[at(g, 10.9, -2.1)] == CellClass::negative_obstacle);
+    CHECK(l.drop_m[at(g, 10.1, 0.1)] > 0.35f);
+    // The rims stay traversable; nothing is a positive obstacle.
+    CHECK(l.cell_class[at(g, 9.7, 0.1)] == CellClass::traversable);
+    CHECK(l.cell_class[at(g, 11.3, 0.1)] == CellClass::traversable);
+    CHECK(count_class(l, CellClass::obstacle) == 0);
+}
+
+TEST_CASE("a slope below the limit is traversable, one above it is not")
+{
+    TerrainGrid g = empty_grid(80, 80);
+    SECTION("15 degrees")
+    {
+        const double t = std::tan(15.0 * M_PI / 180.0);
+        fill(g, [&](double x, double) { return kGround + x * t; });
+        const TraversabilityLayers l = classify(g);
+        CHECK(count_class(l, CellClass::traversable) == static_cast<int>(g.cells()));
+        CHECK(l.slope_deg[at(g, 6, 0)] > 13.0f);
+        CHECK(l.slope_deg[at(g, 6, 0)] < 17.0f);
+        CHECK(l.cost[at(g, 6, 0)] > 0.4f);  // it costs
+    }
+    SECTION("35 degrees")
+    {
+        const double t = std::tan(35.0 * M_PI / 180.0);
+        fill(g, [&](double x, double y) { return kGround + (x > 5 ? (x - 5) * t : 0.0) + 0 * y; });
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 8.1, 0.1)] == CellClass::obstacle);
+        CHECK(l.cell_class[at(g, 3.1, 0.1)] == CellClass::traversable);
+    }
+    SECTION("20 degrees across the path")
+    {
+        const double t = std::tan(20.0 * M_PI / 180.0);
+        fill(g, [&](double, double y) { return kGround + y * t; });
+        const TraversabilityLayers l = classify(g);
+        CHECK(count_class(l, CellClass::traversable) == static_cast<int>(g.cells()));
+        CHECK(l.slope_deg[at(g, 6, 0)] > 18.0f);
+    }
+}
+
+TEST_CASE("aged data decays to unknown, by time and by distance driven")
+{
+    TerrainGrid g = empty_grid(40, 40);
+    fill(g, [](double, double) { return kGround; });
+    const std::size_t old = at(g, 3, 0), half = at(g, 4, 0), fresh = at(g, 5, 0);
+    g.age_s[old] = 61;   // beyond max_age_s
+    g.age_s[half] = 30;  // half of it
+    g.age_s[fresh] = 0;
+    SECTION("standing still: by age")
+    {
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[old] == CellClass::unknown);
+        CHECK(l.certainty[old] == 0.0f);
+        CHECK(l.cell_class[half] == CellClass::traversable);
+        CHECK(std::abs(l.certainty[half] - 0.5f) < 1e-3f);
+        CHECK(l.certainty[fresh] == 1.0f);
+    }
+    SECTION("driving: by distance")
+    {
+        Odometer odo;
+        // 2 m/s for 30 s: the cell aged 30 s was seen 60 m of driving ago.
+        for (int t = 0; t <= 30; ++t) odo.add(1'000'000 + t * 1'000'000LL, Eigen::Vector3d(2.0 * t, 0, kGround));
+        const TraversabilityLayers l = classify(g, odo);
+        CHECK(l.cell_class[half] == CellClass::unknown);
+        CHECK(l.certainty[half] == 0.0f);
+        // Aged 0.1 s (the builder's default): 0.2 m driven of 40.
+        CHECK(l.certainty[at(g, 6, 0)] > 0.99f);
+    }
+}
+
+TEST_CASE("bad classifier settings are refused")
+{
+    ClassifierConfig c;
+    c.max_step_m = 0;
+    CHECK_THROWS(CellClassifier{c});
+    c = ClassifierConfig{};
+    c.max_slope_deg = 90;
+    CHECK_THROWS(CellClassifier{c});
+    c = ClassifierConfig{};
+    c.max_age_s = NAN;
+    CHECK_THROWS(CellClassifier{c});
+}
+
+TEST_CASE("the separable slope equals the plain plane fit")
+{
+    TerrainGrid g = empty_grid(60, 70);
+    // Smooth hills up to about 20 degrees, no steps, some cells unknown.
+    fill(g, [](double x, double y) { return kGround + 0.4 * std::sin(0.5 * x) * std::cos(0.4 * y) + 0.1 * x; });
+    for (std::size_t k = 0; k < g.cells(); k += 7) {
+        g.count[k] = 0;
+        g.mean_z_m[k] = g.max_z_m[k] = g.min_z_m[k] = g.variance_z_m2[k] = NAN;
+    }
+    const TraversabilityLayers l = classify(g);
+    REQUIRE(count_class(l, CellClass::obstacle) == 0);
+    std::vector<uint8_t> counted(g.cells());
+    for (std::size_t k = 0; k < g.cells(); ++k) counted[k] = g.count[k] > 0 ? 1 : 0;
+    const int h = 2;  // slope_radius_m 0.5 at 0.2 m
+    int compared = 0;
+    for (int i = 0; i < g.nx; ++i)
+        for (int j = 0; j < g.ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
+            if (!counted[k]) continue;
+            const double ref = slope_reference_deg(g, counted, i, j, h);
+            INFO("cell " << i << ", " << j);
+            REQUIRE(std::isnan(ref) == std::isnan(l.slope_deg[k]));
+            if (std::isnan(ref)) continue;
+            CHECK(std::abs(ref - l.slope_deg[k]) < 0.05);
+            ++compared;
+        }
+    CHECK(compared > 3000);
+}
