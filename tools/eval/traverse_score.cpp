@@ -331,6 +331,9 @@ TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
     sub_->add_option("--max-drop-m", rules_.max_drop_m, "truth: a column this low below the highest near it is a negative obstacle")
         ->check(CLI::Range(0.01, 10.0));
     sub_->add_option("--step-radius-m", rules_.step_radius_m, "truth: 'near' for steps and drops (m)")->check(CLI::Range(0.01, 5.0));
+    sub_->add_option("--ground-radius-m", rules_.ground_radius_m,
+                     "truth: the local ground at a step is the median within this (m)")
+        ->check(CLI::Range(0.05, 20.0));
     sub_->add_option("--max-slope-deg", rules_.max_slope_deg, "truth: a steeper plane around a column is an obstacle")
         ->check(CLI::Range(1.0, 89.0));
     sub_->add_option("--slope-radius-m", rules_.slope_radius_m, "truth: the plane is fitted over this radius (m)")

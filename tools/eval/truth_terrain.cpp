@@ -29,16 +29,18 @@ std::vector<std::pair<int, int>> disc(double radius_m, double resolution_m)
 TruthTerrain::TruthTerrain(std::shared_ptr<const simworld::HeightField> field, const TruthRules& rules)
     : field_(std::move(field)), rules_(rules)
 {
-    for (double v : {rules.max_step_m, rules.max_drop_m, rules.step_radius_m, rules.slope_radius_m})
+    for (double v : {rules.max_step_m, rules.max_drop_m, rules.step_radius_m, rules.ground_radius_m, rules.slope_radius_m})
         if (!(v > 0.0 && std::isfinite(v))) throw std::invalid_argument("truth rules: lengths must be positive");
     if (!(rules.max_slope_deg > 0.0 && rules.max_slope_deg < 90.0))
         throw std::invalid_argument("truth rules: the slope limit must lie between 0 and 90 degrees");
     step_disc_ = disc(rules.step_radius_m, field_->resolution_m);
     slope_disc_ = disc(rules.slope_radius_m, field_->resolution_m);
-    slope_reach_ = static_cast<int>(std::floor(rules.slope_radius_m / field_->resolution_m + 1e-9));
     for (const auto& [di, dj] : slope_disc_) slope_d2_ += di * di;
     max_slope_tan_ = std::tan(rules.max_slope_deg * M_PI / 180.0);
+    for (const auto& o : disc(rules.ground_radius_m, field_->resolution_m))
+        if (o.first % 3 == 0 && o.second % 3 == 0) ground_disc_.push_back(o);
     cache_.assign(static_cast<std::size_t>(field_->nx) * static_cast<std::size_t>(field_->ny), 0);
+    step_cache_ = cache_;
 }
 
 bool TruthTerrain::column_of(double x_m, double y_m, int& i, int& j) const
@@ -79,43 +81,75 @@ double TruthTerrain::local_ground_at(double x_m, double y_m) const
     return low;
 }
 
-TruthClass TruthTerrain::compute(int i, int j) const
+TruthClass TruthTerrain::step_class(int i, int j) const
 {
     const simworld::HeightField& f = *field_;
+    uint8_t& slot = step_cache_[static_cast<std::size_t>(i) * static_cast<std::size_t>(f.ny) + static_cast<std::size_t>(j)];
+    if (slot != 0) return static_cast<TruthClass>(slot - 1);
+    TruthClass out = TruthClass::none;
     const double z = f.at(i, j);
-    if (!std::isfinite(z)) return TruthClass::none;
-    double low = z, high = z;
-    for (const auto& [di, dj] : step_disc_) {
+    if (std::isfinite(z)) {
+        double low = z, high = z;
+        for (const auto& [di, dj] : step_disc_) {
+            const int a = i + di, b = j + dj;
+            if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
+            const double h = f.at(a, b);
+            if (!std::isfinite(h)) continue;
+            low = std::min(low, h);
+            high = std::max(high, h);
+        }
+        const bool up = z - low >= rules_.max_step_m - kHeightTolerance;
+        const bool down = high - z >= rules_.max_drop_m - kHeightTolerance;
+        out = TruthClass::traversable;
+        if (up || down) {
+            // At a step: which side differs from the local ground (the median around)?
+            around_.clear();
+            for (const auto& [di, dj] : ground_disc_) {
+                const int a = i + di, b = j + dj;
+                if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
+                const float h = f.at(a, b);
+                if (std::isfinite(h)) around_.push_back(h);
+            }
+            const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
+            std::nth_element(around_.begin(), mid, around_.end());
+            const double ground = around_.empty() ? z : static_cast<double>(*mid);
+            if (up && z - ground >= rules_.max_step_m - kHeightTolerance) out = TruthClass::obstacle;
+            else if (down && ground - z >= rules_.max_drop_m - kHeightTolerance) out = TruthClass::negative;
+        }
+    }
+    slot = static_cast<uint8_t>(static_cast<uint8_t>(out) + 1);
+    return out;
+}
+
+TruthClass TruthTerrain::compute(int i, int j) const
+{
+    const TruthClass step = step_class(i, j);
+    if (step != TruthClass::traversable) return step;
+    // Too steep is an obstacle where no step obstacle lies within the slope disc (a box
+    // would tilt the plane of the ground beside it). Least-squares plane z = c0 + c1 dx + c2 dy:
+    // over a whole disc (symmetric: the sums of dx, dy and dx dy vanish) the gradient is
+    // sum(d h) / sum(d^2); a disc cut by the field's edge or a missing height takes the
+    // general solve.
+    const simworld::HeightField& f = *field_;
+    const double z = f.at(i, j);
+    double sum_i = 0.0, sum_j = 0.0;
+    std::size_t n = 0;
+    for (const auto& [di, dj] : slope_disc_) {
         const int a = i + di, b = j + dj;
         if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
         const double h = f.at(a, b);
         if (!std::isfinite(h)) continue;
-        low = std::min(low, h);
-        high = std::max(high, h);
-    }
-    if (z - low >= rules_.max_step_m - kHeightTolerance) return TruthClass::obstacle;
-    // Least-squares plane z = c0 + c1 dx + c2 dy over the slope disc. Over the whole disc
-    // (symmetric: the sums of dx, dy and dx dy vanish) the gradient is sum(d h) / sum(d^2);
-    // a disc cut by the field's edge or a missing height takes the general solve.
-    double sum_i = 0.0, sum_j = 0.0;
-    std::size_t n = 0;
-    const bool inside = i - slope_reach_ >= 0 && i + slope_reach_ < f.nx && j - slope_reach_ >= 0 && j + slope_reach_ < f.ny;
-    if (inside) {
-        for (const auto& [di, dj] : slope_disc_) {
-            const double h = f.at(i + di, j + dj);
-            if (!std::isfinite(h)) break;
-            sum_i += di * (h - z);
-            sum_j += dj * (h - z);
-            ++n;
-        }
+        if (step_class(a, b) != TruthClass::traversable) return TruthClass::traversable;
+        sum_i += di * (h - z);
+        sum_j += dj * (h - z);
+        ++n;
     }
     double gradient = 0.0;
     if (n == slope_disc_.size()) {
         gradient = std::hypot(sum_i, sum_j) / (slope_d2_ * f.resolution_m);
-    } else {
+    } else if (n >= 3) {
         Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
         Eigen::Vector3d atz = Eigen::Vector3d::Zero();
-        int used = 0;
         for (const auto& [di, dj] : slope_disc_) {
             const int a = i + di, b = j + dj;
             if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
@@ -124,16 +158,11 @@ TruthClass TruthTerrain::compute(int i, int j) const
             const Eigen::Vector3d row(1.0, di * f.resolution_m, dj * f.resolution_m);
             ata += row * row.transpose();
             atz += row * (h - z);
-            ++used;
         }
-        if (used >= 3) {
-            const Eigen::Vector3d c = ata.ldlt().solve(atz);
-            if (std::isfinite(c[1]) && std::isfinite(c[2])) gradient = std::hypot(c[1], c[2]);
-        }
+        const Eigen::Vector3d c = ata.ldlt().solve(atz);
+        if (std::isfinite(c[1]) && std::isfinite(c[2])) gradient = std::hypot(c[1], c[2]);
     }
-    if (gradient > max_slope_tan_) return TruthClass::obstacle;
-    if (high - z >= rules_.max_drop_m - kHeightTolerance) return TruthClass::negative;
-    return TruthClass::traversable;
+    return gradient > max_slope_tan_ ? TruthClass::obstacle : TruthClass::traversable;
 }
 
 }  // namespace ugv::eval

@@ -12,14 +12,17 @@
 
 namespace ugv::eval {
 
-// The defaults are lib/traverse's ClassifierConfig's, so the truth and the map use one rule.
+// The defaults are lib/traverse's ClassifierConfig's, so the truth and the map use one rule
+// (docs/traverse.md section 4).
 struct TruthRules
 {
-    double max_step_m = 0.2;      // standing this high above the lowest column near it: obstacle
-    double max_drop_m = 0.2;      // lying this low below the highest column near it: negative obstacle
+    double max_step_m = 0.2;      // standing this high above the lowest column near it ...
+    double max_drop_m = 0.2;      // lying this low below the highest column near it ...
     double step_radius_m = 0.3;   // "near": column centres within this distance
-    double max_slope_deg = 25;    // a steeper plane fitted around the column: obstacle
-    double slope_radius_m = 0.5;  // the plane is fitted over the columns within this distance
+    double ground_radius_m = 1.5; // ... and as far from the local ground (the median within this): the
+                                  // side of a step that differs from its surroundings is the obstacle
+    double max_slope_deg = 25;    // a steeper plane fitted around the column: obstacle ...
+    double slope_radius_m = 0.5;  // ... fitted over the columns within this, where no step obstacle is
 };
 
 enum class TruthClass : uint8_t { none = 0, traversable = 1, obstacle = 2, negative = 3 };
@@ -45,16 +48,19 @@ public:
     const TruthRules& rules() const { return rules_; }
 
 private:
+    TruthClass step_class(int i, int j) const;  // by the step and drop rules alone
     TruthClass compute(int i, int j) const;
 
     std::shared_ptr<const simworld::HeightField> field_;
     TruthRules rules_;
     std::vector<std::pair<int, int>> step_disc_;   // offsets within step_radius_m
     std::vector<std::pair<int, int>> slope_disc_;  // offsets within slope_radius_m
-    int slope_reach_ = 0;                          // its radius in columns
+    std::vector<std::pair<int, int>> ground_disc_; // every third column within ground_radius_m
     double slope_d2_ = 0;                          // sum of di^2 over it (= of dj^2)
     double max_slope_tan_ = 0;
     mutable std::vector<uint8_t> cache_;           // TruthClass + 1, 0 = not computed
+    mutable std::vector<uint8_t> step_cache_;      // the same for step_class
+    mutable std::vector<float> around_;
 };
 
 }  // namespace ugv::eval

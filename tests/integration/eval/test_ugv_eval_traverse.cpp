@@ -5,6 +5,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -34,9 +35,10 @@ struct Box
     double x0, y0, x1, y1, h;
 };
 // Box A (0.6 m, 1 x 1 m, cells aligned) straight ahead at 6 m; box B (0.3 m, 0.4 x 0.4 m) at
-// 10 m, 2 m to the left.
+// 10 m, 2 m to the left; ditch C (0.4 m deep, 1 x 1 m) at 8 m, 3 m to the right.
 const Box kBoxA{6.0, -0.6, 7.0, 0.4, 0.6};
 const Box kBoxB{10.0, 2.0, 10.4, 2.4, 0.3};
+const Box kDitchC{8.0, -4.0, 9.0, -3.0, -0.4};
 
 simworld::HeightField field(double ground, const std::vector<Box>& boxes)
 {
@@ -49,10 +51,12 @@ simworld::HeightField field(double ground, const std::vector<Box>& boxes)
     return f;
 }
 
-// The test's own reading of the rules, for boxes on flat ground (the slope rule off): a
-// column is an obstacle if a column 0.2 m lower lies within 0.3 m, negative if a column
-// 0.2 m higher does; a cell takes the worst of its columns.
-std::vector<int8_t> oracle_classes(const simworld::HeightField& f)
+// The test's own reading of the rules, for small boxes and ditches on flat ground (the
+// slope rule off; the local ground is the flat ground): a column is an obstacle if it stands
+// 0.2 m above the ground and a column 0.2 m lower lies within 0.3 m, negative if it lies
+// 0.2 m below the ground and a column 0.2 m higher lies within 0.3 m; a cell takes the worst
+// of its columns.
+std::vector<int8_t> oracle_classes(const simworld::HeightField& f, double ground)
 {
     std::vector<int8_t> cls(kN * kN, traversability_map_t::CLASS_TRAVERSABLE);
     for (int i = 0; i < kN; ++i) {
@@ -66,8 +70,8 @@ std::vector<int8_t> oracle_classes(const simworld::HeightField& f)
                         for (int db = -6; db <= 6; ++db) {
                             if (da * da + db * db > 36) continue;
                             const double n = f.height_at(x + da * kRes, y + db * kRes);
-                            if (z - n >= 0.2 - 1e-5) worst = traversability_map_t::CLASS_OBSTACLE;
-                            if (n - z >= 0.2 - 1e-5 && worst != traversability_map_t::CLASS_OBSTACLE)
+                            if (z - n >= 0.2 - 1e-5 && z - ground >= 0.2 - 1e-5) worst = traversability_map_t::CLASS_OBSTACLE;
+                            if (n - z >= 0.2 - 1e-5 && ground - z >= 0.2 - 1e-5 && worst != traversability_map_t::CLASS_OBSTACLE)
                                 worst = traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
                         }
                     }
@@ -164,7 +168,7 @@ struct World
     test::TempDir dir;
     simworld::HeightField truth;
     std::vector<int8_t> perfect;
-    explicit World(double ground) : truth(field(ground, {kBoxA, kBoxB})), perfect(oracle_classes(truth))
+    explicit World(double ground) : truth(field(ground, {kBoxA, kBoxB, kDitchC})), perfect(oracle_classes(truth, ground))
     {
         test::write_file(dir / "truth.hf", simworld::encode_height_field(truth));
     }
@@ -189,8 +193,8 @@ TEST_CASE("ugv-eval traverse: a perfect map on ground at 1.5 m has recall 1, no 
 {
     World w(1.5);
     // By hand: box A's 25 cells less its centre one (no column of it within 0.3 m of the
-    // ground) are obstacles; the two rings of ground cells around it, less the outer ring's
-    // corners, are negative (0.6 m below a column within 0.3 m). Box B: 4 + (36 - 4 - 4).
+    // ground) are obstacles, and box B's 4; the ground at their feet is no negative obstacle
+    // (it is the local ground). Ditch C: 24 negative cells, its rim no obstacle.
     const std::vector<int8_t>& p = w.perfect;
     long obstacles = 0, negatives = 0;
     for (int8_t c : p) {
@@ -198,7 +202,7 @@ TEST_CASE("ugv-eval traverse: a perfect map on ground at 1.5 m has recall 1, no 
         negatives += c == traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
     }
     REQUIRE(obstacles == 24 + 4);
-    REQUIRE(negatives == 52 + 28);
+    REQUIRE(negatives == 24);
     const candidate_arcs_t arcs = arcs_msg(1.5, {0, 1, 0});
     const Run r = w.score(trav_map(1.5, p), &arcs);
     INFO(r.out);
@@ -207,10 +211,10 @@ TEST_CASE("ugv-eval traverse: a perfect map on ground at 1.5 m has recall 1, no 
     CHECK(r.get("obstacle_cells") == 28);
     CHECK(r.get("obstacle_seen") == 28);
     CHECK(r.get("obstacle_detected") == 28);
-    CHECK(r.get("negative_cells") == 80);
-    CHECK(r.get("negative_detected") == 80);
+    CHECK(r.get("negative_cells") == 24);
+    CHECK(r.get("negative_detected") == 24);
     CHECK(r.get("recall") == 1.0);
-    CHECK(r.get("traversable_known") == 75 * 100 - 108);
+    CHECK(r.get("traversable_known") == 75 * 100 - 52);
     CHECK(r.get("false_obstacles") == 0);
     CHECK(r.get("false_obstacle_rate") == 0.0);
     CHECK(r.get("arcs") == 3);
@@ -238,26 +242,26 @@ TEST_CASE("ugv-eval traverse: a missed box lowers the recall by its cells, a fal
 {
     World w(1.5);
     std::vector<int8_t> cls = w.perfect;
-    area(cls, 9.6, 1.6, 10.8, 2.8, traversability_map_t::CLASS_TRAVERSABLE);  // box B and its rings
+    area(cls, 10.0, 2.0, 10.4, 2.4, traversability_map_t::CLASS_TRAVERSABLE);  // box B
     cell(cls, 3.0, -3.0, traversability_map_t::CLASS_OBSTACLE);               // flat ground
     cell(cls, 4.0, -4.0, traversability_map_t::CLASS_NEGATIVE_OBSTACLE);      // flat ground
-    // One cell beside box A's outer ring: within one cell of a truth obstacle, no false one.
-    cell(cls, 5.5, 0.0, traversability_map_t::CLASS_OBSTACLE);
+    // The cell before box A: within one cell of a truth obstacle, no false one.
+    cell(cls, 5.9, 0.0, traversability_map_t::CLASS_OBSTACLE);
     const Run r = w.score(trav_map(1.5, cls), nullptr);
     INFO(r.out);
     REQUIRE(r.rc == 0);
     CHECK(r.get("obstacle_seen") == 28);
     CHECK(r.get("obstacle_detected") == 24);
-    CHECK(r.get("negative_detected") == 52);
-    CHECK(r.get("recall") == Approx(76.0 / 108.0).margin(1e-5));
+    CHECK(r.get("negative_detected") == 24);
+    CHECK(r.get("recall") == Approx(48.0 / 52.0).margin(1e-5));
     CHECK(r.get("false_obstacles") == 1);
     CHECK(r.get("false_negative_obstacles") == 1);
-    CHECK(r.get("false_obstacle_rate") == Approx(2.0 / (7500 - 108)).margin(1e-5));
+    CHECK(r.get("false_obstacle_rate") == Approx(2.0 / (7500 - 52)).margin(1e-5));
     CHECK(r.get("arcs") == 0);
     CHECK(std::isnan(r.get("arc_agreement")));
 
     // A box the laser has not seen (its cells UNKNOWN) is not missed: recall back to 1.
-    area(cls, 9.6, 1.6, 10.8, 2.8, traversability_map_t::CLASS_UNKNOWN);
+    area(cls, 10.0, 2.0, 10.4, 2.4, traversability_map_t::CLASS_UNKNOWN);
     const Run u = w.score(trav_map(1.5, cls), nullptr);
     CHECK(u.get("obstacle_cells") == 28);
     CHECK(u.get("obstacle_seen") == 24);
@@ -388,4 +392,42 @@ TEST_CASE("ugv-eval compare: obstacles stand above the local ground, wherever th
     r = eval(dir, {"compare", log, "--flat", "1.5", "--box", "2.3,-5,2.7,5,2.0"});
     CHECK(r.out.find("\"obstacle_cells\": 4,") != std::string::npos);
     CHECK(r.out.find("\"false_obstacles\": 0,") != std::string::npos);
+}
+
+TEST_CASE("ugv-eval traverse: the truth's slopes: 30 degrees is an obstacle, 10 degrees is not")
+{
+    // Ground at 1.5 m rising at 30 degrees over x in [3, 5), then at 10 degrees over [8, 11),
+    // flat between and after, across the whole field (no side edges). Every cell known.
+    test::TempDir dir;
+    simworld::HeightField truth(-6.0, -11.0, kRes, 440, 440, 1.5f);
+    const double steep = std::tan(30.0 * M_PI / 180.0), gentle = std::tan(10.0 * M_PI / 180.0);
+    for (int i = 0; i < truth.nx; ++i) {
+        const double x = truth.cell_x(i);
+        const double z = 1.5 + steep * std::clamp(x - 3.0, 0.0, 2.0) + gentle * std::clamp(x - 8.0, 0.0, 3.0);
+        for (int j = 0; j < truth.ny; ++j) truth.at(i, j) = static_cast<float>(z);
+    }
+    test::write_file(dir / "truth.hf", simworld::encode_height_field(truth));
+    const std::string log = dir / "t.lcm";
+    {
+        lcm::LogFile f(log, "w");
+        test::write_event(f, kUtime, "TRAVERSABILITY_MAP",
+                          trav_map(1.5, std::vector<int8_t>(kN * kN, traversability_map_t::CLASS_TRAVERSABLE)));
+    }
+    const Run all = eval(dir, {"traverse", log, "--truth", dir / "truth.hf"});
+    INFO(all.out);
+    REQUIRE(all.rc == 0);
+    const double obstacles = all.get("obstacle_cells");
+    // The 2 m steep band is 10 rows of 100 cells; near the bends the plane over 0.5 m also
+    // holds flat ground and is less steep: a row or two fewer at each end.
+    CHECK(obstacles >= 600);
+    CHECK(obstacles <= 1000);
+    CHECK(std::fmod(obstacles, 100.0) == 0.0);
+    CHECK(all.get("negative_cells") == 0);
+    CHECK(all.get("obstacle_detected") == 0);
+    // Nothing beyond 7 m: the 10 degree slope is no obstacle.
+    const Run near = eval(dir, {"traverse", log, "--truth", dir / "truth.hf", "--range-m", "7"});
+    CHECK(near.get("obstacle_cells") == obstacles);
+    // A 35 degree limit passes the 30 degree band too.
+    const Run lax = eval(dir, {"traverse", log, "--truth", dir / "truth.hf", "--max-slope-deg", "35"});
+    CHECK(lax.get("obstacle_cells") == 0);
 }
