@@ -156,7 +156,29 @@ TruthClass cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i
     return out;
 }
 
-void score_cells(const TruthTerrain& truth, const PlacedClasses& map, double range_m, TraverseScore& s)
+// A cell the map got wrong, for --misses: where it is and what each side says.
+void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClasses& map, int i, int j, const char* what,
+                TruthClass truth)
+{
+    if (out == nullptr) return;
+    const Eigen::Vector2d w = map.centre_world(i, j), b = map.body(w);
+    static const char* const names[] = {"none", "traversable", "obstacle", "negative"};
+    const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(m.ny) + static_cast<std::size_t>(j);
+    auto layer = [&](const std::vector<float>& v) {
+        char buf[32] = "null";
+        if (v.size() == m.cell_class.size() && std::isfinite(v[k])) std::snprintf(buf, sizeof buf, "%.3f", double(v[k]));
+        return std::string(buf);
+    };
+    std::fprintf(out,
+                 "{\"map_seq\": %lld, \"what\": \"%s\", \"i\": %d, \"j\": %d, \"x\": %.2f, \"y\": %.2f, "
+                 "\"body_x\": %.2f, \"body_y\": %.2f, \"truth\": \"%s\", \"map_class\": %d, \"step_m\": %s, "
+                 "\"drop_m\": %s, \"slope_deg\": %s}\n",
+                 static_cast<long long>(m.map_seq), what, i, j, w.x(), w.y(), b.x(), b.y(), names[static_cast<int>(truth)],
+                 map.cls(i, j), layer(m.step_m).c_str(), layer(m.drop_m).c_str(), layer(m.slope_deg).c_str());
+}
+
+void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const PlacedClasses& map, double range_m,
+                 std::FILE* misses, TraverseScore& s)
 {
     const int nx = map.nx(), ny = map.ny();
     std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
@@ -185,6 +207,7 @@ void score_cells(const TruthTerrain& truth, const PlacedClasses& map, double ran
                 if (mc == traversability_map_t::CLASS_TRAVERSABLE || near(i, j, truth_obstacle)) continue;
                 if (mc == traversability_map_t::CLASS_OBSTACLE) ++s.false_obstacles;
                 else ++s.false_negative_obstacles;
+                print_miss(misses, m, map, i, j, "false", tc);
                 continue;
             }
             const bool positive = tc == TruthClass::obstacle;
@@ -192,6 +215,7 @@ void score_cells(const TruthTerrain& truth, const PlacedClasses& map, double ran
             if (!known) continue;
             ++(positive ? s.obstacle_seen : s.negative_seen);
             if (near(i, j, map_obstacle)) ++(positive ? s.obstacle_detected : s.negative_detected);
+            else print_miss(misses, m, map, i, j, "missed", tc);
         }
     }
 }
@@ -338,6 +362,9 @@ TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
         ->check(CLI::Range(1.0, 89.0));
     sub_->add_option("--slope-radius-m", rules_.slope_radius_m, "truth: the plane is fitted over this radius (m)")
         ->check(CLI::Range(0.01, 5.0));
+    sub_->add_option("--misses", misses_,
+                     "write each missed truth obstacle and each false obstacle (cell, world and body position, both "
+                     "classes, the map's step, drop, slope) to this file, one JSON line each");
     auto* all = sub_->add_flag("--all", all_, "a line for every map (the default)");
     sub_->add_flag("--last", last_, "a line for the last map only")->excludes(all);
 }
@@ -394,13 +421,21 @@ int TraverseScoreCommand::run() const
     if (malformed > 0)
         std::fprintf(stderr, "ugv-eval: %ld message(s) on %s or %s in %s could not be decoded (skipped)\n", malformed,
                      channel_.c_str(), arcs_channel_.c_str(), log_.c_str());
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> misses(nullptr, &std::fclose);
+    if (!misses_.empty()) {
+        misses.reset(std::fopen(misses_.c_str(), "w"));
+        if (!misses) {
+            std::fprintf(stderr, "ugv-eval: %s: cannot write\n", misses_.c_str());
+            return 2;
+        }
+    }
     TraverseScore total;
     long with_arcs = 0;
     double worst_recall = 2.0, worst_false = -1.0, worst_agreement = 2.0;
     for (const traversability_map_t& m : maps) {
         const PlacedClasses placed(m);
         TraverseScore s;
-        score_cells(truth, placed, range_m_, s);
+        score_cells(truth, m, placed, range_m_, misses.get(), s);
         const auto it = arcs.find(m.map_seq);
         if (it != arcs.end()) {
             score_arcs(truth, placed, it->second, rear_x_m_, front_x_m_, s);

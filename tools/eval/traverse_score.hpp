@@ -42,7 +42,7 @@ public:
 
 private:
     CLI::App* sub_;
-    std::string log_, truth_, channel_ = "TRAVERSABILITY_MAP", arcs_channel_ = "ARCS";
+    std::string log_, truth_, channel_ = "TRAVERSABILITY_MAP", arcs_channel_ = "ARCS", misses_;
     double range_m_ = 15.0;
     double rear_x_m_, front_x_m_;  // the footprint's, lengthwise; its width is the arcs' swept width
     TruthRules rules_;

@@ -247,9 +247,19 @@ TEST_CASE("ugv-eval traverse: a missed box lowers the recall by its cells, a fal
     cell(cls, 4.0, -4.0, traversability_map_t::CLASS_NEGATIVE_OBSTACLE);      // flat ground
     // The cell before box A: within one cell of a truth obstacle, no false one.
     cell(cls, 5.9, 0.0, traversability_map_t::CLASS_OBSTACLE);
-    const Run r = w.score(trav_map(1.5, cls), nullptr);
+    const Run r = w.score(trav_map(1.5, cls), nullptr, {"--misses", w.dir / "misses.jsonl"});
     INFO(r.out);
     REQUIRE(r.rc == 0);
+    // --misses: a line per missed cell (box B's 4) and per false one (2).
+    const std::string misses = test::read_file(w.dir / "misses.jsonl");
+    auto lines_with = [&](const std::string& what) {
+        int n = 0;
+        for (std::size_t at = misses.find(what); at != std::string::npos; at = misses.find(what, at + 1)) ++n;
+        return n;
+    };
+    CHECK(lines_with("\"what\": \"missed\"") == 4);
+    CHECK(lines_with("\"what\": \"false\"") == 2);
+    CHECK(misses.find("\"x\": 10.10, \"y\": 2.10") != std::string::npos);
     CHECK(r.get("obstacle_seen") == 28);
     CHECK(r.get("obstacle_detected") == 24);
     CHECK(r.get("negative_detected") == 24);
