@@ -52,6 +52,7 @@ void to_message(const terrain::MapSnapshot& s, const pose_t& pose_msg, int64_t s
     msg.count = s.count;
     msg.max_z = s.max_z_m;
     msg.min_z = s.min_z_m;
+    msg.age_s = s.age_s;
 }
 
 }  // namespace ugv::terrain_daemon

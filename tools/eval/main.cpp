@@ -55,6 +55,7 @@ MapSnapshot to_snapshot(const terrain_map_t& m)
     s.count = m.count;
     s.max_z_m = m.max_z;
     s.min_z_m = m.min_z;
+    s.age_s = m.age_s;
     return s;
 }
 

@@ -64,7 +64,17 @@ const uint8_t* glyph(char ch)
     static const uint8_t m[5] = {0, 0, 7, 7, 5}, z[5] = {0, 7, 1, 2, 7}, v[5] = {0, 5, 5, 5, 2};
     static const uint8_t a[5] = {0, 6, 1, 7, 7}, r[5] = {0, 6, 5, 4, 4}, two_up[5] = {6, 2, 6, 0, 0};
     static const uint8_t blank[5] = {0, 0, 0, 0, 0};
+    // Capitals, for legends; a small letter without its own glyph below is drawn as its capital.
+    static const uint8_t letters[26][5] = {
+        {2, 5, 7, 5, 5}, {6, 5, 6, 5, 6}, {3, 4, 4, 4, 3}, {6, 5, 5, 5, 6}, {7, 4, 6, 4, 7}, {7, 4, 6, 4, 4},
+        {3, 4, 5, 5, 3}, {5, 5, 7, 5, 5}, {7, 2, 2, 2, 7}, {1, 1, 1, 5, 2}, {5, 5, 6, 5, 5}, {4, 4, 4, 4, 7},
+        {5, 7, 7, 5, 5}, {6, 5, 5, 5, 5}, {2, 5, 5, 5, 2}, {6, 5, 6, 4, 4}, {2, 5, 5, 6, 3}, {6, 5, 6, 5, 5},
+        {3, 4, 2, 1, 6}, {7, 2, 2, 2, 2}, {5, 5, 5, 5, 7}, {5, 5, 5, 5, 2}, {5, 5, 7, 7, 5}, {5, 5, 2, 5, 5},
+        {5, 5, 2, 2, 2}, {7, 1, 2, 4, 7}};
+    static const uint8_t colon[5] = {0, 2, 0, 2, 0}, slash[5] = {1, 1, 2, 4, 4}, open[5] = {1, 2, 2, 2, 1},
+                         close[5] = {4, 2, 2, 2, 4}, equals[5] = {0, 7, 0, 7, 0}, comma[5] = {0, 0, 0, 2, 4};
     if (ch >= '0' && ch <= '9') return digits[ch - '0'];
+    if (ch >= 'A' && ch <= 'Z') return letters[ch - 'A'];
     switch (ch) {
         case '.': return dot;
         case '-': return minus;
@@ -75,7 +85,13 @@ const uint8_t* glyph(char ch)
         case 'a': return a;
         case 'r': return r;
         case '^': return two_up;  // "m^" renders as m with a superscript 2
-        default: return blank;
+        case ':': return colon;
+        case '/': return slash;
+        case '(': return open;
+        case ')': return close;
+        case '=': return equals;
+        case ',': return comma;
+        default: return ch >= 'a' && ch <= 'z' ? letters[ch - 'a'] : blank;
     }
 }
 

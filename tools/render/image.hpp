@@ -1,5 +1,5 @@
 // An RGB canvas with the few drawing primitives the map pictures need, and a 3x5 pixel
-// font for numbers and units.
+// font for numbers, units and legends.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,8 @@ public:
     void set(int x, int y, Rgb c);  // ignored outside
     void fill_rect(int x0, int y0, int x1, int y1, Rgb c);  // inclusive, clipped
     void line(int x0, int y0, int x1, int y1, Rgb c);
-    // Text in the 3x5 font (digits, '.', '-', '+', 'm', 'z', 'v', 'a', 'r', ' '), scaled.
+    // Text in the 3x5 font (digits, capitals, '.', '-', '+', ':', '/', '(', ')', '=', ',', ' ';
+    // 'm', 'z', 'v', 'a', 'r' have small forms, other small letters are drawn as capitals), scaled.
     void text(int x, int y, const std::string& s, Rgb c, int scale = 2);
 
 private:

@@ -86,7 +86,11 @@ Image render_map(const terrain_map_t& m, const RenderOptions& o)
     if (heights.size() < cells || m.variance_z.size() < cells) return img;
 
     double lo = o.z_min_m, hi = o.z_max_m, dev_max = 0.0;
-    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+    const double ground = m.pose.position[2];
+    if (std::isfinite(o.z_span_m) && o.z_span_m > 0.0 && std::isfinite(ground)) {
+        lo = ground - 0.25 * o.z_span_m;
+        hi = lo + o.z_span_m;
+    } else if (!std::isfinite(lo) || !std::isfinite(hi)) {
         lo = std::numeric_limits<double>::infinity();
         hi = -lo;
         for (float z : heights)

@@ -24,6 +24,11 @@ struct RenderOptions
     bool variance_panel = false;
     double z_min_m = std::numeric_limits<double>::quiet_NaN();  // NaN: from the data
     double z_max_m = std::numeric_limits<double>::quiet_NaN();
+    // > 0: a scale this tall that does not depend on what is in view, so that flat ground
+    // has one colour in every picture: from a quarter of it below the ground under the
+    // vehicle (the map pose's height: the body origin is on the ground) to three quarters
+    // above, leaving room for ditches. Overrides z_min_m/z_max_m.
+    double z_span_m = std::numeric_limits<double>::quiet_NaN();
     double vehicle_rear_x_m = -0.5;   // body frame outline of the vehicle
     double vehicle_front_x_m = 2.0;
     double vehicle_width_m = 1.6;

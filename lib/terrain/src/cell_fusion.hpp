@@ -1,5 +1,5 @@
 // The fusion loop's last step, on the map's side: one placed sample into a cell's sums (as
-// two vector adds), its count and its extremes. What the placement kernels computed
+// two vector adds), its count, its extremes and its newest time. What the placement kernels computed
 // (kernels/fusion_kernels.hpp) ends here; a new per-cell quantity goes into CellTally
 // (cell_tally.hpp). Private to the library.
 #pragma once
@@ -43,11 +43,11 @@ struct CellArrays
 
     explicit CellArrays(CellArray& a) : sums(a.sums_data()), tallies(a.tallies_data()) {}
 
-    void add_placed(uint32_t at, const float* sample, float w) const
+    void add_placed(uint32_t at, const float* sample, float w, TimeTick t_ms) const
     {
         const float z = sample[3];
         fuse_point_into(sums[at], sample, w);
-        tallies[at].add(z);
+        tallies[at].add(z, t_ms);
     }
 };
 

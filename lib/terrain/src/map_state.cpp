@@ -11,9 +11,11 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "the map file is written in the host's order");
 
 constexpr char kMagic[8] = {'U', 'G', 'V', 'T', 'M', 'A', 'P', '\0'};
-constexpr uint32_t kVersion = 1;
-constexpr std::size_t kHeaderBytes = 8 + 4 + 4 * 4 + 6 * 8 + 8 + 4;  // magic .. cell count
-constexpr std::size_t kCellBytes = 4 + sizeof(CellSums) + 4 + 2 * 4;
+// 2: each cell's newest time, and the epoch it counts from. A file of version 1 (no times)
+// is refused like any other version: its cells' ages are unknowable.
+constexpr uint32_t kVersion = 2;
+constexpr std::size_t kHeaderBytes = 8 + 4 + 4 * 4 + 6 * 8 + 2 * 8 + 4;  // magic .. cell count
+constexpr std::size_t kCellBytes = 4 + sizeof(CellSums) + 4 + 2 * 4 + 4;
 constexpr std::size_t kChecksumBytes = 8;
 
 uint64_t fnv1a(const uint8_t* p, std::size_t n)
@@ -87,6 +89,7 @@ std::vector<uint8_t> encode_map_state(const MapState& s)
     w.put(s.anchor_y_m);
     w.put(s.anchor_yaw_rad);
     w.put(s.utime_us);
+    w.put(s.epoch_us);
     w.put(static_cast<uint32_t>(s.cells.size()));
     for (const SavedCell& c : s.cells) {
         w.put(c.index);
@@ -94,6 +97,7 @@ std::vector<uint8_t> encode_map_state(const MapState& s)
         w.put(c.tally.count);
         w.put(c.tally.extremes.z_max_m);
         w.put(c.tally.extremes.z_min_m);
+        w.put(c.tally.newest_ms);
     }
     w.put(fnv1a(w.out.data(), w.out.size()));
     return std::move(w.out);
@@ -122,6 +126,7 @@ std::optional<MapState> decode_map_state(const uint8_t* data, std::size_t size, 
     s.anchor_y_m = r.get<double>();
     s.anchor_yaw_rad = r.get<double>();
     s.utime_us = r.get<int64_t>();
+    s.epoch_us = r.get<int64_t>();
     const auto count = r.get<uint32_t>();
     if (s.nx <= 0 || s.ny <= 0 || s.nx > 100'000 || s.ny > 100'000 || (stats != 0 && stats != 1)) {
         why = "bad layout";
@@ -152,9 +157,11 @@ std::optional<MapState> decode_map_state(const uint8_t* data, std::size_t size, 
         c.tally.count = r.get<uint32_t>();
         c.tally.extremes.z_max_m = r.get<float>();
         c.tally.extremes.z_min_m = r.get<float>();
+        c.tally.newest_ms = r.get<TimeTick>();
         const bool in_order = k == 0 || c.index > s.cells[k - 1].index;
         if (c.index >= cells || !in_order || !finite(c.sums) || c.tally.count == 0 ||
-            !std::isfinite(c.tally.extremes.z_max_m) || !std::isfinite(c.tally.extremes.z_min_m)) {
+            !std::isfinite(c.tally.extremes.z_max_m) || !std::isfinite(c.tally.extremes.z_min_m) ||
+            c.tally.newest_ms == kNoTime) {
             why = "bad cell " + std::to_string(k);
             return std::nullopt;
         }

@@ -104,6 +104,33 @@ void TerrainMapper::clear()
     if (world_) world_->clear();
     history_.clear();
     anchored_ = false;
+    has_epoch_ = false;  // no cell holds a time any more
+}
+
+TimeTick TerrainMapper::tick_of(int64_t utime_us) const
+{
+    // Within range by construction (points lie within the pose history, and rebase_ticks
+    // keeps the newest pose within 2^30 ms of the epoch); the clamp keeps kNoTime out.
+    const long long ms = std::llround(static_cast<double>(utime_us - epoch_us_) * 1e-3);
+    return static_cast<TimeTick>(std::clamp<long long>(ms, kNoTime + 1LL, std::numeric_limits<TimeTick>::max()));
+}
+
+void TerrainMapper::rebase_ticks()
+{
+    // Before the newest pose is 2^30 ms (12.4 days) past the epoch, move the epoch to it
+    // and every cell's time with it (a whole-map pass every 12 days); a time that would
+    // fall below the range reads as the oldest one (an age of at least 24.8 days).
+    constexpr int64_t kLimitUs = (int64_t{1} << 30) * 1000;
+    const int64_t newest = history_.newest().utime_us;
+    if (newest - epoch_us_ < kLimitUs) return;
+    const int64_t shift_ms = (newest - epoch_us_) / 1000;
+    epoch_us_ += shift_ms * 1000;
+    CellArray& cells = ego_ ? ego_->cells() : world_->cells();
+    CellTally* t = cells.tallies_data();
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+        if (t[k].newest_ms == kNoTime) continue;
+        t[k].newest_ms = static_cast<TimeTick>(std::max<int64_t>(t[k].newest_ms - shift_ms, kNoTime + 1LL));
+    }
 }
 
 Eigen::Vector2d TerrainMapper::reference_world(const Pose& pose) const
@@ -128,6 +155,11 @@ PoseHistory::AddResult TerrainMapper::add_pose(const Pose& pose)
         ++counters_.poses_rejected_out_of_order;
         return result;
     }
+    if (!has_epoch_) {
+        epoch_us_ = history_.newest().utime_us;
+        has_epoch_ = true;
+    }
+    rebase_ticks();
     if (pending_restore_) decide_restore(history_.newest());
     if (ego_) {
         move_egocentric(history_.newest());
@@ -218,10 +250,16 @@ void TerrainMapper::decide_restore(const Pose& first)
         return;
     }
     ego_->clear();  // unwrapped index = physical index while m_i = 0
+    // The saved times onto this mapper's clock; none newer than the first pose (a file
+    // from a clock that ran ahead reads as just seen, never as from the future).
+    const int64_t shift_ms = std::llround(static_cast<double>(s->epoch_us - epoch_us_) * 1e-3);
+    const int64_t now_ms = tick_of(first.utime_us);
     for (const SavedCell& c : s->cells) {
         const auto slot = static_cast<int>(ego_->storage_of(static_cast<int>(c.index)));
         ego_->cells().sums(slot) = c.sums;
-        ego_->cells().tally(slot) = c.tally;
+        CellTally& t = ego_->cells().tally(slot);
+        t = c.tally;
+        t.newest_ms = static_cast<TimeTick>(std::clamp<int64_t>(c.tally.newest_ms + shift_ms, kNoTime + 1LL, now_ms));
     }
     anchored_ = true;
     anchor_m_ = anchor;
@@ -244,6 +282,7 @@ bool TerrainMapper::save_state(MapState& out) const
     out.anchor_y_m = anchor_m_.y();
     out.anchor_yaw_rad = anchor_yaw_rad_;
     out.utime_us = history_.empty() ? 0 : history_.newest().utime_us;
+    out.epoch_us = epoch_us_;
     out.cells.clear();
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
@@ -262,7 +301,7 @@ void TerrainMapper::move_world(const Pose& pose)
 
 template <typename Grid>
 void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2,
-                                 float w)
+                                 float w, TimeTick t_ms)
 {
     const float inv_g = static_cast<float>(1.0 / config_.grid_size_m);
     const float g = static_cast<float>(config_.grid_size_m);
@@ -275,12 +314,28 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
     }
     const detail::CellArrays cells(grid.cells());
     const float z_f = static_cast<float>(z);
+    // The cell the point was measured in (none when it lies off the map's edge).
+    const int own_row = static_cast<int>(std::floor(x * inv_g));
+    const int own_column = static_cast<int>(std::floor((y - static_cast<float>(grid.y_min_m())) * inv_g));
     for (int a = 0; a < fx.count; ++a) {
         for (int b = 0; b < fy.count; ++b) {
-            const uint32_t at = grid.storage_of(grid.physical(fx.first + a, fy.first + b));
+            const int row = fx.first + a, column = fy.first + b;
+            const uint32_t at = grid.storage_of(grid.physical(row, column));
             alignas(16) float sample[4];
             detail::store4(sample, detail::Float4{0.0f, fx.centre[a] * g, fy.centre[b] * g, z_f});
-            cells.add_placed(at, sample, w * fx.fraction[a] * fy.fraction[b]);
+            const float share = w * fx.fraction[a] * fy.fraction[b];
+            if (row == own_row && column == own_column) {
+                cells.add_placed(at, sample, share, t_ms);
+                continue;
+            }
+            // A share in a neighbour moves its mean by its weight, but its height was not
+            // measured there: it is counted (and dates the cell), not put in the neighbour's
+            // max/min, so a box's top spread beside the box (a large sigma: far range, a poor
+            // yaw) is no ghost obstacle.
+            detail::fuse_point_into(cells.sums[at], sample, share);
+            CellTally& tally = cells.tallies[at];
+            ++tally.count;
+            tally.newest_ms = tally.newest_ms > t_ms ? tally.newest_ms : t_ms;
         }
     }
     ++counters_.points_fused;
@@ -288,12 +343,12 @@ void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float 
 }
 
 template <typename Grid>
-inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, float variance_m2)
+inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, float variance_m2, TimeTick t_ms)
 {
     variance_m2 = std::max(variance_m2, static_cast<float>(config_.min_variance_m2));
     const float w = config_.statistics == StatisticsKind::classical ? 1.0f : 1.0f / variance_m2;
     if (config_.spread && variance_m2 > static_cast<float>(config_.grid_size_m * config_.grid_size_m)) {
-        spread_point(grid, grid.nx(), grid.ny(), x, y, z, variance_m2, w);
+        spread_point(grid, grid.nx(), grid.ny(), x, y, z, variance_m2, w, t_ms);
         return;
     }
     float x_rel = 0.0f, y_rel = 0.0f;
@@ -302,7 +357,7 @@ inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, fl
         ++counters_.rejected_outside_map;
         return;
     }
-    grid.fuse(cell, x_rel, y_rel, z, w);
+    grid.fuse(cell, x_rel, y_rel, z, w, t_ms);
     ++counters_.points_fused;
 }
 
@@ -320,10 +375,14 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
     detail::value_range(batch.time_offset_s, n, t_min, t_max);
     const Frame frame = local_frame();
     Pose p0, p1;
+    const int64_t t_max_us = t_min <= t_max ? batch.utime_us + std::llround(t_max * 1e6) : 0;
     const bool fast = t_min <= t_max && t_max - t_min <= config_.max_interpolation_span_s &&
                       history_.at(batch.utime_us + std::llround(t_min * 1e6), p0) == PoseHistory::Lookup::ok &&
-                      history_.at(batch.utime_us + std::llround(t_max * 1e6), p1) == PoseHistory::Lookup::ok;
+                      history_.at(t_max_us, p1) == PoseHistory::Lookup::ok;
     if (fast) {
+        // Every sample of the batch takes the batch's newest time: within the span above
+        // (one scan) of its own, and the vector kernels need not carry times.
+        const TimeTick batch_ms = tick_of(t_max_us);
         // Over a scan (13-27 ms) the transform changes by a small rotation: blending the two
         // end transforms linearly is within (d_angle^2)/8 of the slerp, < 0.1 mm at 30 m
         // for 1 rad/s, and exact at the ends. The eq. 19 orientation error blends likewise.
@@ -384,7 +443,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             std::size_t rare_count = 0;
             auto add = [&](std::size_t q) {
                 const uint32_t at = grid.storage_of(placed.cell[q]);
-                cells.add_placed(at, placed.sample[q], placed.weight[q]);
+                cells.add_placed(at, placed.sample[q], placed.weight[q], batch_ms);
             };
             auto add_or_defer = [&](std::size_t q) {
                 if (placed.fuse[q]) [[likely]]
@@ -429,7 +488,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
                     ++non_finite;
                 } else if (placed.variance_m2[r] > spread_above) {
                     spread_point(grid, grid.nx(), grid.ny(), placed.lx[r], placed.ly[r], placed.lz[r],
-                                 placed.variance_m2[r], placed.weight[r]);
+                                 placed.variance_m2[r], placed.weight[r], batch_ms);
                 } else {
                     ++outside;
                 }
@@ -448,7 +507,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
                 continue;
             }
             Pose p;
-            const auto found = history_.at(batch.utime_us + std::llround(static_cast<double>(t) * 1e6), p);
+            const int64_t t_us = batch.utime_us + std::llround(static_cast<double>(t) * 1e6);
+            const auto found = history_.at(t_us, p);
             if (found == PoseHistory::Lookup::before_history) {
                 ++counters_.rejected_before_history;
                 continue;
@@ -461,7 +521,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
             const float lx = a.a[0] * x + a.a[1] * y + a.a[2] * z + a.b[0];
             const float ly = a.a[3] * x + a.a[4] * y + a.a[5] * z + a.b[1];
             const float lz = a.a[6] * x + a.a[7] * y + a.a[8] * z + a.b[2];
-            fuse_point(grid, lx, ly, lz, point_variance_m2(v, r, static_cast<float>(p.orientation_error_rad2())));
+            fuse_point(grid, lx, ly, lz, point_variance_m2(v, r, static_cast<float>(p.orientation_error_rad2())),
+                       tick_of(t_us));
         }
     }
     return static_cast<std::size_t>(counters_.points_fused - fused_before);
@@ -487,12 +548,18 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
     out.variance_z_m2.assign(cells, kNanF);
     out.reset(cells);
     const double y_min = -0.5 * ny * g;
+    const double now_ms = history_.empty() ? 0.0 : static_cast<double>(history_.newest().utime_us - epoch_us_) * 1e-3;
     auto put = [&](std::size_t k, const CellSums& c, const CellTally& t) {
         if (c.empty()) return;
         const CellStatistics s = cell_statistics(c, config_.statistics);
         out.mean_z_m[k] = static_cast<float>(s.mean_z_m);
         out.variance_z_m2[k] = static_cast<float>(s.variance_z_m2);
-        out.put(k, t);
+        // Spread shares reach a cell's mean but not its extremes (spread_point): the extremes
+        // shown include the mean, so min <= mean <= max holds and a cell holding shares only
+        // is not left without them.
+        CellTally shown = t;
+        shown.extremes.add(out.mean_z_m[k]);
+        out.put(k, shown, now_ms);
     };
     if (history_.empty()) {
         out.pose = Pose{};

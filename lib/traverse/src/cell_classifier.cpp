@@ -12,9 +12,10 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Bits of a cell's flags: a step up to it, a drop down to it, a step obstacle within the
-// slope window (the plane there says nothing about the ground's slope).
-constexpr uint8_t kUp = 1, kDown = 2, kObstacleNear = 4;
+// Bits of a cell's flags: a step up to it, a drop down to it, an obstacle within the slope
+// window (the plane there says nothing about the ground's slope), its top max_step above the
+// local ground, its bottom max_drop below it.
+constexpr uint8_t kUp = 1, kDown = 2, kObstacleNear = 4, kHigh = 8, kLow = 16;
 
 // A radius as the half-width of the square window of cells it covers (at least 1).
 int half_width(double radius_m, double resolution_m)
@@ -121,6 +122,41 @@ float plane_slope_deg(double cii, double cjj, double cij, double ciz, double cjz
     }
 }
 
+// The plane z = a + gp p + gq q through points (offsets p, q; heights z) by least squares;
+// with a previous fit, only the points within `band` of it. Flat (0, 0) with too few points.
+struct PlaneFit
+{
+    float a = 0, gp = 0, gq = 0;
+};
+PlaneFit fit_plane(const std::vector<float>& z, const std::vector<std::array<float, 2>>& pq, const PlaneFit* previous,
+                   float band)
+{
+    double s0 = 0, sp = 0, sq = 0, spp = 0, sqq = 0, spq = 0, sz = 0, spz = 0, sqz = 0;
+    for (std::size_t u = 0; u < z.size(); ++u) {
+        const double p = pq[u][0], q = pq[u][1], v = z[u];
+        if (previous && std::abs(v - (previous->a + previous->gp * p + previous->gq * q)) > band) continue;
+        s0 += 1;
+        sp += p;
+        sq += q;
+        spp += p * p;
+        sqq += q * q;
+        spq += p * q;
+        sz += v;
+        spz += p * v;
+        sqz += q * v;
+    }
+    PlaneFit f;
+    if (s0 < 6) return previous ? *previous : f;
+    const double cpp = spp - sp * sp / s0, cqq = sqq - sq * sq / s0, cpq = spq - sp * sq / s0;
+    const double cpz = spz - sp * sz / s0, cqz = sqz - sq * sz / s0, det = cpp * cqq - cpq * cpq;
+    if (det > 1e-6 * s0 * s0) {
+        f.gp = static_cast<float>((cqq * cpz - cpq * cqz) / det);
+        f.gq = static_cast<float>((cpp * cqz - cpq * cpz) / det);
+    }
+    f.a = static_cast<float>((sz - f.gp * sp - f.gq * sq) / s0);
+    return f;
+}
+
 }  // namespace
 
 void TraversabilityLayers::reset(int nx_, int ny_)
@@ -129,7 +165,7 @@ void TraversabilityLayers::reset(int nx_, int ny_)
     ny = ny_;
     const std::size_t n = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
     cell_class.assign(n, CellClass::unknown);
-    for (auto* v : {&cost, &step_m, &drop_m, &slope_deg, &roughness_m, &span_m}) v->assign(n, kNaN);
+    for (auto* v : {&cost, &step_m, &drop_m, &slope_deg, &roughness_m, &span_m, &ground_m}) v->assign(n, kNaN);
     certainty.assign(n, 0.0f);
 }
 
@@ -151,6 +187,70 @@ CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
         throw std::invalid_argument("min_support_samples must be in [1, 1000]");
 }
 
+void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double max_step_m, std::vector<float>& ground)
+{
+    constexpr int kStride = 3;
+    const int nx = g.nx, ny = g.ny, h = half_width(radius_m, g.resolution_m);
+    const int lx = (nx - 1) / kStride + 1, ly = (ny - 1) / kStride + 1;
+    lattice_.assign(static_cast<std::size_t>(lx) * ly, kNaN);
+    lattice_slope_.assign(static_cast<std::size_t>(lx) * ly, {0.0f, 0.0f});
+    for (int a = 0; a < lx; ++a)
+        for (int b = 0; b < ly; ++b) {
+            const int i = a * kStride, j = b * kStride;
+            // The known cells of the window (every other row and column) and the plane through
+            // them, fitted twice: the second time without the cells more than max_step/2 off the
+            // first (an obstacle at the window's side would tilt it). Their heights less the
+            // plane's slope are level; a low percentile of them is the ground.
+            window_.clear();
+            offsets_.clear();
+            const float zc = g.mean_z_m[static_cast<std::size_t>(i) * ny + j];
+            const float zref = std::isnan(zc) ? 0.0f : zc;
+            for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); p += 2)
+                for (int q = std::max(0, j - h); q <= std::min(ny - 1, j + h); q += 2) {
+                    const std::size_t m = static_cast<std::size_t>(p) * ny + q;
+                    if (std::isnan(top_[m])) continue;
+                    window_.push_back(g.mean_z_m[m] - zref);
+                    offsets_.push_back({static_cast<float>(p - i), static_cast<float>(q - j)});
+                }
+            if (window_.size() < 3) continue;
+            PlaneFit fit = fit_plane(window_, offsets_, nullptr, 0.0f);
+            fit = fit_plane(window_, offsets_, &fit, static_cast<float>(0.5 * max_step_m));
+            for (std::size_t u = 0; u < window_.size(); ++u)
+                window_[u] += zref - (fit.gp * offsets_[u][0] + fit.gq * offsets_[u][1]);
+            const double gp = fit.gp, gq = fit.gq;
+            const auto mid = window_.begin() + static_cast<std::ptrdiff_t>(2 * window_.size() / 5);
+            std::nth_element(window_.begin(), mid, window_.end());
+            lattice_[static_cast<std::size_t>(a) * ly + b] = *mid;
+            lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {static_cast<float>(gp), static_cast<float>(gq)};
+        }
+    ground.assign(g.cells(), kNaN);
+    for (int i = 0; i < nx; ++i) {
+        const int a = std::min(i / kStride, lx - 1), a1 = std::min(a + 1, lx - 1);
+        const float fa = static_cast<float>(i - a * kStride) / kStride;
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
+            if (std::isnan(top_[k])) continue;
+            const int b = std::min(j / kStride, ly - 1), b1 = std::min(b + 1, ly - 1);
+            const float fb = static_cast<float>(j - b * kStride) / kStride;
+            // Bilinear over the corners that have a level.
+            // Each corner's level carried to the cell along its plane, blended bilinearly over
+            // the corners that have one.
+            float sum = 0, weight = 0;
+            const int ca[4] = {a, a1, a, a1}, cb[4] = {b, b, b1, b1};
+            const float wc[4] = {(1 - fa) * (1 - fb), fa * (1 - fb), (1 - fa) * fb, fa * fb};
+            for (int u = 0; u < 4; ++u) {
+                const std::size_t l = static_cast<std::size_t>(ca[u]) * ly + cb[u];
+                if (std::isnan(lattice_[l]) || wc[u] <= 0) continue;
+                const float level = lattice_[l] + lattice_slope_[l][0] * static_cast<float>(i - ca[u] * kStride) +
+                                    lattice_slope_[l][1] * static_cast<float>(j - cb[u] * kStride);
+                sum += wc[u] * level;
+                weight += wc[u];
+            }
+            if (weight > 1e-3f) ground[k] = sum / weight;
+        }
+    }
+}
+
 void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, TraversabilityLayers& out)
 {
     const int nx = g.nx, ny = g.ny;
@@ -166,6 +266,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     double memo_driven = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
         if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
+        // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
+        // terrain map then shows max = min = mean. Nothing was seen there.
+        if (g.count[k] >= 2 && g.max_z_m[k] == g.min_z_m[k] && g.max_z_m[k] == g.mean_z_m[k]) continue;
         double certainty = 1.0;
         if (have_age && std::isfinite(g.age_s[k])) {
             const float age = g.age_s[k];
@@ -200,15 +303,25 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         edge_[k] = static_cast<uint8_t>((out.step_m[k] >= c.max_step_m ? kUp : 0) | (out.drop_m[k] >= c.max_drop_m ? kDown : 0));
     }
 
-    // 3. Step classes. A cell at a step is an obstacle when its top stands max_step above
-    // the local ground, a negative obstacle when its bottom lies max_drop below it: the side
-    // of a step that differs from its surroundings is the obstacle. The local ground is the
-    // median of the means within ground_radius (a box or ditch narrower than that radius is
-    // the minority).
-    const int hg = half_width(c.ground_radius_m, g.resolution_m);
-    std::vector<float>& around = window_;
-    // Does a neighbour also step up (kUp) or down (kDown)? A cell of fewer samples than
-    // min_support_samples needs one: one stray return alone is not an obstacle.
+    // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
+    // ground, a negative obstacle when its bottom lies max_drop below it. The local ground
+    // is taken on a lattice of every third cell: the 40th percentile of the means within
+    // ground_radius (every other cell) once the slope of the plane through them is taken
+    // out, so a box or ditch narrower than the radius is the minority and a slope is its own
+    // ground, also where the window is cut by the map's edge or by unknown cells. (Below the
+    // median: a wall seen only at its foot, in a line of well-sampled cells at the edge of
+    // what is known, would otherwise raise its own ground.)
+    local_ground(g, c.ground_radius_m, c.max_step_m, out.ground_m);
+    const std::vector<float>& ground_ = out.ground_m;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
+        uint8_t flags = edge_[k];
+        if (top_[k] - ground_[k] >= c.max_step_m) flags |= kHigh;
+        if (ground_[k] - bottom_[k] >= c.max_drop_m) flags |= kLow;
+        edge_[k] = flags;
+    }
+    // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
+    // is too: one stray return alone is not.
     auto neighbour_has = [&](int i, int j, uint8_t bit) {
         for (int p = std::max(0, i - 1); p <= std::min(nx - 1, i + 1); ++p)
             for (int q = std::max(0, j - 1); q <= std::min(ny - 1, j + 1); ++q)
@@ -220,25 +333,11 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;
             if (std::isnan(top_[k])) continue;
             CellClass cls = CellClass::traversable;
-            if (edge_[k] & (kUp | kDown)) {
-                around.clear();
-                // Every other row and column of the window: the median of a quarter of the
-                // cells is as good a level and four times cheaper.
-                for (int p = std::max(0, i - hg); p <= std::min(nx - 1, i + hg); p += 2)
-                    for (int q = std::max(0, j - hg); q <= std::min(ny - 1, j + hg); q += 2) {
-                        const std::size_t m = static_cast<std::size_t>(p) * ny + q;
-                        if (!std::isnan(top_[m])) around.push_back(g.mean_z_m[m]);
-                    }
-                const auto mid = around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2);
-                std::nth_element(around.begin(), mid, around.end());
-                const float ground = *mid;
-                const bool few = g.count[k] < c.min_support_samples;
-                if ((edge_[k] & kUp) && top_[k] - ground >= c.max_step_m && !(few && !neighbour_has(i, j, kUp)))
-                    cls = CellClass::obstacle;
-                else if ((edge_[k] & kDown) && ground - bottom_[k] >= c.max_drop_m &&
-                         !(few && !neighbour_has(i, j, kDown)))
-                    cls = CellClass::negative_obstacle;
-            }
+            const bool few = g.count[k] < c.min_support_samples;
+            if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
+                cls = CellClass::obstacle;
+            else if ((edge_[k] & kLow) && !(few && !neighbour_has(i, j, kLow)))
+                cls = CellClass::negative_obstacle;
             out.cell_class[k] = cls;
         }
     }

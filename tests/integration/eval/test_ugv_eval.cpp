@@ -37,6 +37,7 @@ terrain_map_t flat_map(float z)
     m.count.assign(16, 5);
     m.max_z.assign(16, z);
     m.min_z.assign(16, z);
+    m.age_s.assign(16, 0.0f);
     return m;
 }
 
@@ -109,7 +110,7 @@ TEST_CASE("ugv-eval: map messages whose bytes lie are skipped and said, never de
     test::TempDir dir;
     const terrain_map_t good = flat_map(0.5f);
     std::vector<uint8_t> lying = test::encoded(good);
-    const std::size_t ncells_at = lying.size() - 16 * 4 * 5 - 4;  // the five arrays follow ncells
+    const std::size_t ncells_at = lying.size() - 16 * 4 * 6 - 4;  // the six arrays follow ncells
     REQUIRE(lying[ncells_at + 3] == 16);
     lying[ncells_at] = 0x7f;
     lying[ncells_at + 1] = lying[ncells_at + 2] = lying[ncells_at + 3] = 0xff;

@@ -112,6 +112,22 @@ TEST_CASE("ugv-terrain --replay is deterministic and its map shows the box")
     }
     CHECK(bracketed == known);
     CHECK(map.max_z[static_cast<std::size_t>(box)] == Approx(0.5f).margin(0.02));
+    // Each cell's age: NaN exactly where the mean is; never negative nor older than the
+    // drive. The laser's line of the last publish period (0.2 s: five clouds, each about 60
+    // cells across) is younger than the period; what it swept seconds ago is as old.
+    REQUIRE(map.age_s.size() == map.mean_z.size());
+    const double period_s = 0.2, driven_s = t;
+    int recent = 0, old = 0, in_range = 0;
+    for (std::size_t k = 0; k < map.mean_z.size(); ++k) {
+        CHECK(std::isnan(map.age_s[k]) == std::isnan(map.mean_z[k]));
+        if (std::isnan(map.age_s[k])) continue;
+        in_range += map.age_s[k] >= 0.0f && map.age_s[k] <= driven_s + 1e-3 ? 1 : 0;
+        recent += map.age_s[k] <= period_s ? 1 : 0;
+        old += map.age_s[k] > 1.0f ? 1 : 0;
+    }
+    CHECK(in_range == known);
+    CHECK(recent >= 50);
+    CHECK(old > 100);
 }
 
 TEST_CASE("ugv-terrain refuses a bad key with one line and exit status 2")

@@ -127,8 +127,8 @@ EgocentricGrid full_grid(double known_radius_m = 0.0)
             if (known_radius_m > 0.0 && std::hypot(x, y) > known_radius_m) continue;
             float xr = 0, yr = 0;
             const int cell = g.locate(static_cast<float>((i + 0.3) * 0.2), static_cast<float>(-15.0 + (j + 0.6) * 0.2), xr, yr);
-            g.fuse(cell, xr, yr, 0.01 * i, 100.0f);
-            g.fuse(cell, xr * 0.5f, yr, 0.01 * j, 50.0f);
+            g.fuse(cell, xr, yr, 0.01 * i, 100.0f, 0);
+            g.fuse(cell, xr * 0.5f, yr, 0.01 * j, 50.0f, 0);
         }
     }
     return g;

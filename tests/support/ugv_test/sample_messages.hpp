@@ -85,6 +85,7 @@ inline std::vector<std::string> publish_samples(bus::Bus& b)
     map.count = {3, 0};
     map.max_z = {0.75f, NAN};
     map.min_z = {0.25f, NAN};
+    map.age_s = {1.5f, NAN};
     stamp(map, "terrain_map_t");
     daemon_status_t status{};
     status.name = "ugv-lms";

@@ -30,10 +30,10 @@ std::map<std::string, std::vector<uint8_t>> encoded_samples()
 TEST_CASE("every ugv type is known to the reflection, with distinct fingerprints")
 {
     const auto types = reflect::all_types();
-    REQUIRE(types.size() == 12);
+    REQUIRE(types.size() == 14);
     std::set<int64_t> hashes;
     for (const auto& t : types) hashes.insert(t.hash);
-    CHECK(hashes.size() == 12);
+    CHECK(hashes.size() == 14);
 }
 
 TEST_CASE("every ugv message prints as JSON with its values")

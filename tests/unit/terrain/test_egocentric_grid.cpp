@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -19,7 +20,7 @@ void put(EgocentricGrid& g, float x, float y, double z)
     float xr = 0, yr = 0;
     const int cell = g.locate(x, y, xr, yr);
     REQUIRE(cell >= 0);
-    g.fuse(cell, xr, yr, z, 1.0f);
+    g.fuse(cell, xr, yr, z, 1.0f, 0);
 }
 
 double mean_z(const CellSums& c)
@@ -85,7 +86,7 @@ TEST_CASE("the pool of known cells gives each cell its own sums through fusion, 
             if (cell < 0) continue;
             const double z = 100.0 + unit(rng);
             const float w = 1.0f + 9.0f * unit(rng);
-            g.fuse(cell, xr, yr, z, w);
+            g.fuse(cell, xr, yr, z, w, 0);
             fuse_sample(plain[static_cast<std::size_t>(cell)], xr, yr, z, w);
             ++plain_n[static_cast<std::size_t>(cell)];
             plain_e[static_cast<std::size_t>(cell)].add(static_cast<float>(z));
@@ -236,7 +237,7 @@ void fuse_random(EgocentricGrid& g, std::mt19937& rng, float skip_share)
                 const float y = static_cast<float>(g.y_min_m()) + (static_cast<float>(j) + 0.05f + 0.9f * unit(rng)) * 0.25f;
                 const int cell = g.locate(x, y, xr, yr);
                 REQUIRE(cell == g.physical(i, j));
-                g.fuse(cell, xr, yr, 100.0 + 0.5 * unit(rng), 10.0f + 100.0f * unit(rng));
+                g.fuse(cell, xr, yr, 100.0 + 0.5 * unit(rng), 10.0f + 100.0f * unit(rng), 0);
             }
         }
     }
@@ -342,7 +343,7 @@ TEST_CASE("after a rotation that drops and merges cells, new cells take only fre
     int added = 0;
     for (int cell = 0; cell < 41 * 37; ++cell) {
         if (!kept[static_cast<std::size_t>(cell)].empty()) continue;
-        g.fuse(cell, 0.01f, -0.02f, 50.0 + 0.01 * cell, 2.0f);  // a height of its own
+        g.fuse(cell, 0.01f, -0.02f, 50.0 + 0.01 * cell, 2.0f, 0);  // a height of its own
         ++added;
     }
     REQUIRE(added > known_before - known_after);
@@ -484,4 +485,37 @@ TEST_CASE("a rotation merges cells landing together (max of maxes, min of mins) 
         CHECK(turned.extremes(9, 0).z_max_m == 1.0f);
         CHECK(turned.extremes(9, 0).z_min_m == 1.0f);
     }
+}
+
+// Cells that land together in a rotation keep the newest of their times. Each cell's one
+// sample has a time and a height equal to it, so after the merge a cell's newest time must
+// be its highest sample.
+TEST_CASE("a rotation's merged cells keep the newest time of those merged")
+{
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    INFO("simd level " << to_string(level));
+    EgocentricGrid g(41, 37, 0.25);
+    std::mt19937 rng(5);
+    std::vector<TimeTick> times(41 * 37);
+    std::iota(times.begin(), times.end(), TimeTick{-600});  // negative times count too
+    std::shuffle(times.begin(), times.end(), rng);
+    for (int cell = 0; cell < 41 * 37; ++cell) {
+        const TimeTick t = times[static_cast<std::size_t>(cell)];
+        g.fuse(cell, 0.01f, 0.02f, static_cast<double>(t), 1.0f, t);
+    }
+    g.transform(0.087, 0.1, -0.2);
+    int merged = 0;
+    for (int cell = 0; cell < 41 * 37; ++cell) {
+        const CellTally& t = g.tally(cell);
+        if (t.count == 0) {
+            CHECK(t.newest_ms == kNoTime);
+            continue;
+        }
+        INFO("cell " << cell);
+        merged += t.count > 1 ? 1 : 0;
+        CHECK(t.newest_ms == static_cast<TimeTick>(t.extremes.z_max_m));
+    }
+    CHECK(merged > 5);
 }

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "ugv/terrain/map_state.hpp"
@@ -159,4 +160,57 @@ TEST_CASE("map state: a first pose beyond the extent, or another layout, starts 
         again.snapshot(snap);
         CHECK(known(snap) == 0);
     }
+}
+
+TEST_CASE("map state: the cells' ages survive a restart, counted on as the clock runs")
+{
+    const MapConfig c = small_config();
+    const TerrainMapper m = mapped(c);  // last pose and batch at 4.0 s, the first at 1.0 s
+    MapSnapshot before;
+    m.snapshot(before);
+    MapState s;
+    REQUIRE(m.save_state(s));
+    std::string why;
+    const std::vector<uint8_t> bytes = encode_map_state(s);
+    const auto back = decode_map_state(bytes.data(), bytes.size(), why);
+    REQUIRE(back);
+
+    // Restarted 5 s later: every cell is 5 s older than when saved.
+    TerrainMapper again(c);
+    again.restore_at_first_pose(*back);
+    const Pose last = m.poses().newest();
+    REQUIRE(again.add_pose(pose_at(last.utime_us + 5'000'000, last.position_m.x(), last.position_m.y(), 0.3)) ==
+            PoseHistory::AddResult::added);
+    REQUIRE(again.restore_outcome() == RestoreOutcome::restored);
+    MapSnapshot after;
+    again.snapshot(after);
+    int fresh = 0, old = 0;
+    for (std::size_t k = 0; k < before.count.size(); ++k) {
+        INFO("cell " << k);
+        REQUIRE(std::isnan(after.age_s[k]) == std::isnan(before.age_s[k]));
+        if (std::isnan(before.age_s[k])) continue;
+        CHECK(after.age_s[k] == Approx(before.age_s[k] + 5.0).margin(1e-3));
+        fresh += before.age_s[k] < 0.05f ? 1 : 0;
+        old += before.age_s[k] > 1.0f ? 1 : 0;
+    }
+    CHECK(fresh > 100);
+    CHECK(old > 10);  // cells last seen before the vehicle drove on
+}
+
+TEST_CASE("map state: a file of format 1 (no ages) or a cell without a time is refused")
+{
+    MapState s;
+    REQUIRE(mapped(small_config()).save_state(s));
+    std::vector<uint8_t> bytes = encode_map_state(s);
+    std::string why;
+    std::vector<uint8_t> v1 = bytes;
+    const uint32_t one = 1;
+    std::memcpy(v1.data() + 8, &one, sizeof one);
+    CHECK_FALSE(decode_map_state(v1.data(), v1.size(), why));
+    CHECK(why == "format version 1, expected 2");
+
+    s.cells[3].tally.newest_ms = kNoTime;
+    bytes = encode_map_state(s);
+    CHECK_FALSE(decode_map_state(bytes.data(), bytes.size(), why));
+    CHECK(why == "bad cell 3");
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "map_render.hpp"
 #include "png_writer.hpp"
@@ -66,6 +67,7 @@ TEST_CASE("the plan view: unknown white, elevation coloured, forward up and left
     m.count.assign(400, 0);
     m.max_z.assign(400, NAN);
     m.min_z.assign(400, NAN);
+    m.age_s.assign(400, NAN);
     m.mean_z[19 * 20 + 0] = 1.0f;  // far, rightmost: top right of the picture, the highest (red)
     m.variance_z[19 * 20 + 0] = 0.04f;
     m.mean_z[0 * 20 + 19] = 0.0f;  // near, leftmost: bottom left, the lowest (green)
@@ -104,6 +106,7 @@ TEST_CASE("the vehicle outline and reference point are drawn where the map says"
     m.count.assign(1600, 0);
     m.max_z.assign(1600, NAN);
     m.min_z.assign(1600, NAN);
+    m.age_s.assign(1600, NAN);
     RenderOptions o;
     o.cell_px = 4;
     const Image img = render_map(m, o);
@@ -127,6 +130,7 @@ TEST_CASE("the max and min layers colour each cell by its highest or lowest samp
     m.count.assign(100, 0);
     m.max_z.assign(100, NAN);
     m.min_z.assign(100, NAN);
+    m.age_s.assign(100, NAN);
     // Two known cells: a wall's (mean 0.5, samples 0 .. 1.5) and the ground's (mean, max and
     // min 0.1 .. 0.2).
     const std::size_t wall = 3 * 10 + 4, ground = 6 * 10 + 2;
@@ -160,4 +164,61 @@ TEST_CASE("the max and min layers colour each cell by its highest or lowest samp
     CHECK(img.at(gx, gy) == elevation_colour(0.1 / 1.5));
     cell_pixel(m, 2, 0, 0, wx, wy);
     CHECK(img.at(wx, wy) == kUnknown);
+}
+
+TEST_CASE("--z-span: a fixed scale from the ground under the vehicle, so flat ground has one colour")
+{
+    // Flat ground 750 m up with 2 cm of noise, one 0.5 m box; then the same ground with a
+    // 3 m wall in view.
+    terrain_map_t m{};
+    m.nx = m.ny = 10;
+    m.ncells = 100;
+    m.resolution = 0.5f;
+    m.origin_x = 10.0f;  // the vehicle outside the picture
+    m.origin_y = -2.5f;
+    m.pose.position[2] = 750.0;  // the body origin is on the ground
+    m.mean_z.assign(100, 750.0f);
+    m.variance_z.assign(100, 0.0004f);
+    m.count.assign(100, 5);
+    m.max_z = m.min_z = m.mean_z;
+    const std::size_t low = 2 * 10 + 2, high = 2 * 10 + 3, box = 5 * 10 + 5, far = 9 * 10 + 9;
+    m.mean_z[low] = 749.98f;
+    m.mean_z[high] = 750.02f;
+    m.mean_z[box] = 750.5f;
+    RenderOptions o;
+    o.cell_px = 2;
+    auto colour = [&](const terrain_map_t& map, std::size_t k) {
+        int x = 0, y = 0;
+        cell_pixel(map, 2, static_cast<int>(k) / 10, static_cast<int>(k) % 10, x, y);
+        return render_map(map, o).at(x, y);
+    };
+    // The complaint: without the box, the automatic scale (at least 0.1 m tall) spreads the
+    // 4 cm of noise over 40 % of the colours.
+    terrain_map_t bare = m;
+    bare.mean_z[box] = 750.0f;
+    CHECK(colour(bare, low) == elevation_colour(0.3));
+    CHECK(colour(bare, high) == elevation_colour(0.7));
+    // 1 m span: from 749.75 to 750.75; the ground a quarter up, the box three quarters.
+    o.z_span_m = 1.0;
+    CHECK(colour(m, far) == elevation_colour(0.25));
+    CHECK(colour(m, box) == elevation_colour(0.75));
+    // The noise is 4 % of the scale, in the box's picture and in the bare one alike.
+    CHECK(colour(m, low) == elevation_colour(0.23));
+    CHECK(colour(m, high) == elevation_colour(0.27));
+    CHECK(colour(bare, low) == elevation_colour(0.23));
+    CHECK(colour(bare, high) == elevation_colour(0.27));
+    // A wall in view does not change the ground's colour (it would on the automatic scale).
+    terrain_map_t walled = m;
+    walled.mean_z[box] = 753.0f;
+    CHECK(colour(walled, far) == elevation_colour(0.25));
+    CHECK(colour(walled, box) == elevation_colour(1.0));
+    o.z_span_m = std::numeric_limits<double>::quiet_NaN();
+    CHECK_FALSE(colour(walled, far) == colour(m, far));
+    // The same ground at 1.5 m (another world) in the same colour.
+    terrain_map_t other = m;
+    for (float& z : other.mean_z) z -= 748.5f;
+    other.pose.position[2] = 1.5;
+    o.z_span_m = 1.0;
+    CHECK(colour(other, far) == colour(m, far));
+    CHECK(colour(other, box) == colour(m, box));
 }

@@ -294,6 +294,57 @@ TEST_CASE("section 3.5: spreading conserves total weight")
         if (!std::isnan(s.mean_z_m[k])) CHECK((s.mean_z_m[k] == Approx(2.0f) || s.mean_z_m[k] == Approx(1.0f) || s.mean_z_m[k] == Approx(3.0f)));
 }
 
+TEST_CASE("section 3.5: a spread point's height reaches only its own cell's max (no ghost beside a box)")
+{
+    // The mechanism of the ghosts beside boxes in turns: a box-top point with sigma > G is
+    // spread over the ground cells beside the box; its height must not become their max.
+    for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+        INFO((mode == MapMode::egocentric ? "egocentric" : "world aligned"));
+        MapConfig c;
+        c.mode = mode;
+        c.spread = true;
+        c.spread_max_cells = 2;
+        TerrainMapper m(c);
+        m.add_pose(pose_at(0, 0.0, 0.0, 0.0));
+        // Cell (i, j) of the egocentric layout: x = -0.5 + (i + 0.5) G ahead of the body
+        // origin, y = -15 + (j + 0.5) G; the world grid is resampled into the same layout.
+        auto cx = [](int i) { return static_cast<float>(-0.5 + (i + 0.5) * 0.2); };
+        auto cy = [](int j) { return static_cast<float>(-15.0 + (j + 0.5) * 0.2); };
+        Points ground;  // sigma 1 cm: each in its own cell; a 0.5 m box on columns 75-78 of rows 52-54
+        for (int i = 50; i <= 56; ++i)
+            for (int j = 71; j <= 78; ++j) {
+                const bool box = i >= 52 && i <= 54 && j >= 75;
+                for (int k = 0; k < 4; ++k) ground.add(cx(i), cy(j), box ? 0.5f : 0.0f, 1e-4f);
+            }
+        REQUIRE(m.fuse(ground.batch(0)) == 7 * 8 * 4);
+        Points top;  // the box's top 2 cm inside its edge, sigma 0.3 m (far range, a turn's yaw sigma)
+        top.add(cx(53), 0.02f, 0.5f, 0.09f);
+        top.add(cx(60), cy(60), 0.7f, 0.09f);  // alone on unknown ground: a spread-only cell has extremes too
+        REQUIRE(m.fuse(top.batch(0)) == 2);
+        REQUIRE(m.counters().points_spread == 2);
+        MapSnapshot s;
+        m.snapshot(s);
+        auto k = [](int i, int j) { return static_cast<std::size_t>(i * 150 + j); };
+        CHECK(s.max_z_m[k(53, 75)] == Approx(0.5f));  // the point's own cell
+        for (int i = 52; i <= 54; ++i)
+            for (int j = 73; j <= 74; ++j) {
+                INFO("ground cell " << i << ", " << j << " beside the box");
+                CHECK(s.max_z_m[k(i, j)] < 0.01f);
+                CHECK(s.count[k(i, j)] == 5);  // N still counts the spread point in every cell it touches
+            }
+        for (std::size_t q = 0; q < s.mean_z_m.size(); ++q) {
+            INFO("cell " << q);
+            REQUIRE(std::isnan(s.max_z_m[q]) == std::isnan(s.mean_z_m[q]));
+            REQUIRE(std::isnan(s.min_z_m[q]) == std::isnan(s.mean_z_m[q]));
+            if (std::isnan(s.mean_z_m[q])) continue;
+            CHECK(s.min_z_m[q] <= s.mean_z_m[q] + 1e-5f);
+            CHECK(s.mean_z_m[q] <= s.max_z_m[q] + 1e-5f);
+        }
+        CHECK(s.max_z_m[k(60, 60)] == Approx(0.7f));
+        CHECK(s.max_z_m[k(60, 61)] == Approx(0.7f));  // nothing else there: the mean is the point's
+    }
+}
+
 TEST_CASE("spreading conserves total weight at the map's edge and in the world-aligned mode")
 {
     MapConfig c;
@@ -494,5 +545,96 @@ TEST_CASE("the snapshot gives each cell's highest and lowest sample, NaN where u
         int known = 0;
         for (std::size_t k = 0; k < s.count.size(); ++k) known += std::isnan(s.max_z_m[k]) ? 0 : 1;
         CHECK(known == 1);
+    }
+}
+
+TEST_CASE("a cell's age is the map's time minus its newest sample's, NaN where unknown, through a wrap")
+{
+    for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
+        INFO("mode " << static_cast<int>(mode));
+        MapConfig c = base_config();
+        c.mode = mode;
+        TerrainMapper m(c);
+        for (const int64_t t : {0, 1'000'000, 2'000'000, 2'500'000})
+            REQUIRE(m.add_pose(pose_at(t, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        // Cell a (row 10) at 1.0 s and again at 2.0 s; cell b (row 12) at 1.0 s only; row 0's
+        // cell at 2.0 s. A batch within one scan's span takes its newest point's time (2.004 s).
+        Points at_1, at_2;
+        at_1.add(-0.5f + 2.1f, 0.1f, 0.0f);
+        at_1.add(-0.5f + 2.5f, 0.1f, 0.0f);
+        at_2.add(-0.5f + 2.1f, 0.1f, 0.0f, 0.01f, -0.002f);
+        at_2.add(-0.5f + 0.1f, 0.1f, 0.0f, 0.01f, 0.004f);
+        REQUIRE(m.fuse(at_1.batch(1'000'000)) == 2);
+        REQUIRE(m.fuse(at_2.batch(2'000'000)) == 2);
+        // Longer than max_interpolation_span_s: each point takes its own time (1.5 s, 2.5 s).
+        Points spread_out;
+        spread_out.add(-0.5f + 2.9f, 0.1f, 0.0f, 0.01f, -1.0f);
+        spread_out.add(-0.5f + 3.3f, 0.1f, 0.0f, 0.01f, 0.0f);
+        REQUIRE(m.fuse(spread_out.batch(2'500'000)) == 2);
+        REQUIRE(m.add_pose(pose_at(3'500'000, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        MapSnapshot s;
+        m.snapshot(s);
+        // The world-aligned map is resampled by nearest cell (a world cell may show twice or
+        // not at all): there every known cell's age must be one of those fused.
+        const std::vector<double> fused_at = {2.004, 1.0, 1.5, 2.5};
+        std::vector<int> seen(fused_at.size());
+        for (std::size_t k = 0; k < s.count.size(); ++k) {
+            INFO("cell " << k);
+            CHECK(std::isnan(s.age_s[k]) == (s.count[k] == 0));
+            if (s.count[k] == 0) continue;
+            std::size_t f = 0;
+            while (f < fused_at.size() && std::abs(s.age_s[k] - (3.5 - fused_at[f])) > 1e-3) ++f;
+            REQUIRE(f < fused_at.size());
+            ++seen[f];
+        }
+        CHECK(std::count(seen.begin(), seen.end(), 0) <= (mode == MapMode::egocentric ? 0 : 1));
+        if (mode == MapMode::egocentric) {
+            CHECK(s.age_s[10 * 150 + 75] == Approx(3.5 - 2.004).margin(1e-3));  // a
+            CHECK(s.age_s[12 * 150 + 75] == Approx(3.5 - 1.0).margin(1e-3));    // b
+            CHECK(s.age_s[0 * 150 + 75] == Approx(3.5 - 2.004).margin(1e-3));
+            CHECK(s.age_s[14 * 150 + 75] == Approx(3.5 - 1.5).margin(1e-3));
+            CHECK(s.age_s[16 * 150 + 75] == Approx(3.5 - 2.5).margin(1e-3));
+            CHECK(seen == std::vector<int>{2, 1, 1, 1});
+        }
+        // One metre forward at 4.5 s: five rows wrapped; row 0's cell is gone (NaN), a is in
+        // row 5 and one second older.
+        REQUIRE(m.add_pose(pose_at(4'500'000, 1.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        m.snapshot(s);
+        CHECK(s.age_s[5 * 150 + 75] == Approx(4.5 - 2.004).margin(1e-3));
+        if (mode == MapMode::egocentric) CHECK(s.age_s[7 * 150 + 75] == Approx(4.5 - 1.0).margin(1e-3));
+        for (std::size_t k = 0; k < s.count.size(); ++k) CHECK(std::isnan(s.age_s[k]) == (s.count[k] == 0));
+        for (std::size_t k = 0; k < 5 * 150; ++k) CHECK(std::isnan(s.age_s[k]));  // rows driven over
+    }
+}
+
+// The tallies count milliseconds in 32 bits from an epoch the mapper moves on as the poses
+// run (every 2^30 ms): the ages stay exact however long it runs.
+TEST_CASE("ages stay exact over weeks of running")
+{
+    TerrainMapper m(base_config());
+    const int64_t day_us = 86'400'000'000;
+    REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+    Points p;
+    p.add(-0.5f + 2.1f, 0.1f, 0.0f);
+    REQUIRE(m.fuse(p.batch(0)) == 1);
+    MapSnapshot s;
+    const std::size_t cell = 10 * 150 + 75, other = 12 * 150 + 75;
+    Points q;
+    q.add(-0.5f + 2.5f, 0.1f, 0.0f);
+    for (int day = 1; day <= 30; ++day) {
+        const int64_t t = day * day_us + 123'000;
+        REQUIRE(m.add_pose(pose_at(t, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        REQUIRE(m.fuse(q.batch(t)) == 1);
+        REQUIRE(m.add_pose(pose_at(t + 250'000, 0.0, 0.0, 0.0)) == PoseHistory::AddResult::added);
+        m.snapshot(s);
+        INFO("day " << day);
+        CHECK(s.age_s[other] == Approx(0.25).margin(1e-3));
+        // The first cell's time leaves the 32-bit range after 24.8 days: it then reads as at
+        // least that old.
+        const double age = static_cast<double>(t + 250'000) * 1e-6;
+        if (age < 24.8 * 86'400.0)
+            CHECK(s.age_s[cell] == Approx(age).epsilon(1e-6));
+        else
+            CHECK(s.age_s[cell] >= 24.8 * 86'400.0);
     }
 }

@@ -14,7 +14,7 @@ TEST_CASE("the world ring follows the vehicle by whole cells and clears what lea
     float xr = 0, yr = 0;
     int cell = g.locate(0.5f, 5.5f, xr, yr);
     REQUIRE(cell >= 0);
-    g.fuse(cell, xr, yr, 3.0, 1.0f);
+    g.fuse(cell, xr, yr, 3.0, 1.0f, 0);
     REQUIRE(g.cell_at({-4.5, 0.5}) == cell);
     CHECK(g.count(cell) == 1);
     // Two cells east: the western column (ENU x -5..-3) leaves and is cleared.
@@ -35,7 +35,7 @@ TEST_CASE("a jump larger than the window clears it all")
     WorldGrid g(10, 1.0);
     g.follow({0.0, 0.0});
     float xr = 0, yr = 0;
-    g.fuse(g.locate(5.5f, 5.5f, xr, yr), xr, yr, 1.0, 1.0f);
+    g.fuse(g.locate(5.5f, 5.5f, xr, yr), xr, yr, 1.0, 1.0f, 0);
     g.follow({100.0, 0.0});
     g.follow({0.0, 0.0});
     for (int k = 0; k < 100; ++k) CHECK((g.count(k) == 0 && g.at(k).empty()));

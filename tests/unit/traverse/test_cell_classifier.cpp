@@ -250,3 +250,18 @@ TEST_CASE("the separable slope equals the plain plane fit")
         }
     CHECK(compared > 3000);
 }
+
+TEST_CASE("a cell holding only its neighbours' spread shares was not seen")
+{
+    TerrainGrid g = empty_grid(40, 40);
+    fill(g, [](double, double) { return kGround; });
+    // Inside a ditch the laser never saw: the terrain map shows the rim's spread shares
+    // (max = min = mean, several counted).
+    const std::size_t k = at(g, 3.1, 0.1);
+    g.count[k] = 9;
+    g.mean_z_m[k] = g.max_z_m[k] = g.min_z_m[k] = static_cast<float>(kGround - 0.02);
+    g.variance_z_m2[k] = 0.0004f;
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[k] == CellClass::unknown);
+    CHECK(std::isnan(l.cost[k]));
+}

@@ -3,10 +3,11 @@
 
     compare_replay.py OLD_UGV_TERRAIN NEW_UGV_TERRAIN LOG [--config TOML]
 
-terrain_map_t may have gained fields at its end (max_z, min_z after count): every field the
-old message has (pose, geometry, mean_z, variance_z, count) must have the same bytes in the
-new one; the new arrays are only checked for their size and for being NaN exactly where the
-mean is. Exit 0 when every map matches. Needs nothing but Python 3.
+terrain_map_t may have gained fields at its end (max_z, min_z after count, age_s after
+min_z): every field the old message has (pose, geometry, mean_z, variance_z, count, ...) must
+have the same bytes in the new one; the new arrays are only checked for being NaN exactly where
+the mean is, min <= mean <= max and age >= 0. Exit 0 when every map matches. Needs nothing but
+Python 3.
 """
 import argparse
 import math
@@ -17,6 +18,9 @@ import tempfile
 from pathlib import Path
 
 SYNC = 0xEDA1DA01
+# Bytes before the arrays: fingerprint, utime, seq, pose_t (385), 8 four-byte fields, mode,
+# statistics; ncells is the last four of them.
+ARRAYS_AT = 8 + 16 + 385 + 32 + 2 + 4
 
 
 def events(path, channel):
@@ -63,19 +67,17 @@ def main():
         bad += 1
     for k, ((t_old, d_old), (t_new, d_new)) in enumerate(zip(old, new)):
         body = d_old[8:]  # after the 8-byte fingerprint
-        extra = len(d_new) - len(d_old)
         if t_old != t_new or d_new[8:8 + len(body)] != body:
             first = next((i for i, (x, y) in enumerate(zip(body, d_new[8:])) if x != y), None)
             print(f"map {k}: differs (first differing byte {first} of {len(body)})")
             bad += 1
             continue
-        # The old message ends with mean_z, variance_z, count: ncells floats/ints each.
-        ncells = extra // 8
-        mean = struct.unpack(f">{ncells}f", body[len(body) - 12 * ncells:len(body) - 8 * ncells])
-        top = struct.unpack(f">{ncells}f", d_new[len(d_new) - 8 * ncells:len(d_new) - 4 * ncells])
-        low = struct.unpack(f">{ncells}f", d_new[len(d_new) - 4 * ncells:])
-        for m, hi, lo in zip(mean, top, low):
-            if math.isnan(m) != math.isnan(hi) or math.isnan(m) != math.isnan(lo):
+        # The new message's arrays: mean_z, variance_z, count, max_z, min_z, age_s.
+        (ncells,) = struct.unpack(">i", d_new[ARRAYS_AT - 4:ARRAYS_AT])
+        layer = [struct.unpack(f">{ncells}f", d_new[ARRAYS_AT + 4 * ncells * i:ARRAYS_AT + 4 * ncells * (i + 1)])
+                 for i in range(6)]
+        for m, hi, lo, age in zip(layer[0], layer[3], layer[4], layer[5]):
+            if any(math.isnan(m) != math.isnan(v) for v in (hi, lo, age)) or age < 0:
                 bad += 1
             elif not math.isnan(m):
                 known += 1
@@ -83,8 +85,8 @@ def main():
                 if not lo - 1e-4 <= m <= hi + 1e-4:
                     bad += 1
     print(f"{len(new)} maps, {known} known cells: mean, variance, count and every older field "
-          f"{'identical' if bad == 0 else 'NOT identical'}; max/min NaN exactly where the mean is and "
-          f"min <= mean <= max ({tall} cells with max more than 0.1 m above the mean)")
+          f"{'identical' if bad == 0 else 'NOT identical'}; max/min/age NaN exactly where the mean is, "
+          f"min <= mean <= max, age >= 0 ({tall} cells with max more than 0.1 m above the mean)")
     return 0 if bad == 0 else 1
 
 

@@ -1,6 +1,6 @@
 // The cells of a grid: their sums (32 bytes each, see cell_sums.hpp) and, in an array of
 // its own indexed the same way, their other quantities (CellTally, cell_tally.hpp: the
-// sample count N, Table 1 #1, and the extremes of z). The fusion loop touches one entry of
+// sample count N, Table 1 #1, the extremes of z and the newest sample's time). The fusion loop touches one entry of
 // each per point; a whole-grid pass (snapshot) reads them in order. The vector kernels see
 // only the sums (the rotation moves slots, not the cells' contents), so a quantity added to
 // CellTally changes neither them nor this class.
@@ -29,12 +29,12 @@ public:
     CellSums* sums_data() { return sums_.data(); }
     CellTally* tallies_data() { return tallies_.data(); }
 
-    // One sample into one cell (see fuse_sample).
-    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
+    // One sample, taken at t_ms, into one cell (see fuse_sample).
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w, TimeTick t_ms)
     {
         const auto k = static_cast<std::size_t>(cell);
         fuse_sample(sums_[k], x_rel_m, y_rel_m, z_m, w);
-        tallies_[k].add(static_cast<float>(z_m));
+        tallies_[k].add(static_cast<float>(z_m), t_ms);
     }
     // Cell from's samples added into cell into (cells that land together in a rotation);
     // from is left as it was.

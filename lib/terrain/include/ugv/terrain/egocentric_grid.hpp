@@ -68,9 +68,9 @@ public:
     uint32_t count(int i, int j) const { return tally(i, j).count; }
     const CellExtremes& extremes(int cell) const { return tally(cell).extremes; }
     const CellExtremes& extremes(int i, int j) const { return tally(i, j).extremes; }
-    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w)
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w, TimeTick t_ms)
     {
-        pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w);
+        pool_.fuse(static_cast<int>(storage_of(cell)), x_rel_m, y_rel_m, z_m, w, t_ms);
     }
     // For the fusion loop: where in cells() the cell's sums and count are, given a slot if
     // it had none. The pool does not grow, so pointers into cells() stay valid.

@@ -160,14 +160,20 @@ private:
     template <typename Grid>
     std::size_t fuse_into(Grid& grid, const PointBatch& batch);
     template <typename Grid>
-    void fuse_point(Grid& grid, float x, float y, double z, float variance_m2);
+    void fuse_point(Grid& grid, float x, float y, double z, float variance_m2, TimeTick t_ms);
     template <typename Grid>
-    void spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2, float w);
+    void spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2, float w,
+                      TimeTick t_ms);
     Eigen::Vector2d reference_world(const Pose& pose) const;
+    // A time on the tallies' clock (whole ms since epoch_us_).
+    TimeTick tick_of(int64_t utime_us) const;
+    void rebase_ticks();
 
     MapConfig config_;
     PoseHistory history_;
     MapCounters counters_;
+    int64_t epoch_us_ = 0;      // the tallies' times count from here (set by the first pose)
+    bool has_epoch_ = false;
     std::unique_ptr<EgocentricGrid> ego_;
     std::unique_ptr<WorldGrid> world_;
     bool anchored_ = false;

@@ -56,7 +56,10 @@ public:
     const CellSums& at(int cell) const { return cells_.sums(cell); }
     const CellTally& tally(int cell) const { return cells_.tally(cell); }
     uint32_t count(int cell) const { return cells_.count(cell); }
-    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w) { cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w); }
+    void fuse(int cell, float x_rel_m, float y_rel_m, double z_m, float w, TimeTick t_ms)
+    {
+        cells_.fuse(cell, x_rel_m, y_rel_m, z_m, w, t_ms);
+    }
     CellArray& cells() { return cells_; }
     // Where in cells() the cell's sums and count are (the same index: see EgocentricGrid).
     uint32_t storage_of(int cell) const { return static_cast<uint32_t>(cell); }

@@ -3,6 +3,7 @@
 // and odometer give the same layers (the class keeps only working memory).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct TraversabilityLayers
     std::vector<float> slope_deg;
     std::vector<float> roughness_m;  // sqrt(variance)
     std::vector<float> span_m;       // max - min
+    std::vector<float> ground_m;     // the local ground's height under the cell (ENU)
     std::vector<float> certainty;    // [0, 1]
 
     void reset(int nx, int ny);
@@ -53,9 +55,13 @@ public:
     const ClassifierConfig& config() const { return config_; }
 
 private:
+    // ground := the local ground under every known cell (step 3 of classify).
+    void local_ground(const TerrainGrid& grid, double radius_m, double max_step_m, std::vector<float>& ground);
+
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
-    std::vector<float> top_, bottom_, lowest_, highest_, tmp_;
+    std::vector<float> top_, bottom_, lowest_, highest_, tmp_, lattice_;
+    std::vector<std::array<float, 2>> lattice_slope_, offsets_;
     std::vector<uint8_t> edge_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_;
     std::vector<float> window_;
