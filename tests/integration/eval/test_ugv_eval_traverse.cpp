@@ -387,6 +387,7 @@ TEST_CASE("ugv-eval compare: obstacles stand above the local ground, wherever th
     m.count.assign(16, 5);
     m.max_z = m.mean_z;
     m.min_z = m.mean_z;
+    m.age_s.assign(16, 0.0f);
     const std::string log = dir / "map.lcm";
     {
         lcm::LogFile f(log, "w");
