@@ -3,6 +3,9 @@
 //       the maps of a log (the last, or all) against a height field (ugv-sim world's
 //       truth.hf, or a flat floor with boxes): RMSE, bias, coverage, obstacle detection,
 //       and the cells' highest samples against the truth (how tall an obstacle's cell says it is).
+//   ugv-eval traverse LOG --truth RUN/truth.hf [--all|--last]
+//       the traversability maps and candidate arcs of a log against the truth
+//       (traverse_score.hpp, docs/traverse.md section 4).
 //   ugv-eval diff A.lcm B.lcm [--pair time|last] [--max-dz M] [--max-one-sided F] [--all]
 //       the maps of two logs against each other (map_diff.hpp).
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
@@ -26,6 +29,8 @@
 #include "floor_study.hpp"
 #include "ugv/simworld/height_field.hpp"
 #include "map_diff.hpp"
+#include "truth_terrain.hpp"
+#include "traverse_score.hpp"
 
 using namespace ugv;
 using namespace ugv::terrain;
@@ -61,8 +66,8 @@ struct Box
 
 using HeightFn = std::function<double(double x_m, double y_m)>;
 
-int compare(const std::string& path, const std::string& channel, const HeightFn& truth, double obstacle_height,
-            bool all)
+int compare(const std::string& path, const std::string& channel, const HeightFn& truth, const HeightFn& ground,
+            double obstacle_height, bool all)
 {
     lcm::LogFile log(path, "r");
     if (!log.good()) {
@@ -74,7 +79,7 @@ int compare(const std::string& path, const std::string& channel, const HeightFn&
     int maps = 0;
     int malformed = 0;
     auto report = [&](const terrain_map_t& map) {
-        const MapMetrics r = evaluate(to_snapshot(map), truth, obstacle_height);
+        const MapMetrics r = evaluate(to_snapshot(map), truth, obstacle_height, ground);
         std::printf("{\"utime\": %lld, \"known\": %d, \"coverage\": %.4f, \"bias_m\": %.5f, \"rmse_m\": %.5f, "
                     "\"mean_cell_variance_m2\": %.6f, \"obstacle_cells\": %d, \"obstacles_detected\": %d, "
                     "\"false_obstacles\": %d, \"max_bias_m\": %.5f, \"max_rmse_m\": %.5f, "
@@ -186,7 +191,11 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0.0, 5.0));
     cmp->add_option("--flat", flat, "height of the ground (m, ENU up)");
     cmp->add_option("--box", box_args, "an obstacle: X0,Y0,X1,Y1,H (m, ENU)");
-    cmp->add_option("--obstacle-height", obstacle_height, "a cell above this is an obstacle (m)");
+    cmp->add_option("--obstacle-height", obstacle_height,
+                    "a cell standing this much above the lowest truth within --ground-radius is an obstacle (m)");
+    double ground_radius = ugv::eval::TruthRules{}.step_radius_m;
+    cmp->add_option("--ground-radius", ground_radius, "the local ground of a cell: the lowest truth within this (m)")
+        ->check(CLI::Range(0.01, 5.0));
     cmp->add_flag("--all", all, "every map, not only the last");
 
     auto* study = app.add_subcommand("floor-study", "Tables 3 and 4 of the report on a simulated flat floor");
@@ -195,9 +204,11 @@ int main(int argc, char** argv)
     study->add_option("--seed", o.seed, "random seed");
     study->add_flag("--spread", o.spread, "spread points whose sigma exceeds the grid (section 3.5)");
     ugv::eval::MapDiffCommand diff(app);  // its options are bound to its members
+    ugv::eval::TraverseScoreCommand traverse(app);
     CLI11_PARSE(app, argc, argv);
 
     if (diff.chosen()) return diff.run();
+    if (traverse.chosen()) return traverse.run();
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {
@@ -222,7 +233,11 @@ int main(int argc, char** argv)
                             if (!(std::abs(field->height_at(x + dx, y + dy) - z) <= 0.1)) return std::numeric_limits<double>::quiet_NaN();
                     return z;
                 };
-                return compare(log_path, channel, truth, obstacle_height, all);
+                ugv::eval::TruthRules rules;
+                rules.step_radius_m = ground_radius;
+                auto terrain = std::make_shared<const ugv::eval::TruthTerrain>(field, rules);
+                auto ground = [terrain](double x, double y) { return terrain->local_ground_at(x, y); };
+                return compare(log_path, channel, truth, ground, obstacle_height, all);
             } catch (const std::invalid_argument& e) {
                 std::fprintf(stderr, "ugv-eval: %s: %s\n", truth_path.c_str(), e.what());
                 return 2;
@@ -234,7 +249,16 @@ int main(int argc, char** argv)
                 if (x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1) z = std::max(z, b.h);
             return z;
         };
-        return compare(log_path, channel, flat_with_boxes, obstacle_height, all);
+        // The lowest of the floor and boxes within the radius, on a 5 cm grid.
+        auto ground = [flat_with_boxes, ground_radius](double x, double y) {
+            const int n = static_cast<int>(std::floor(ground_radius / 0.05 + 1e-9));
+            double low = flat_with_boxes(x, y);
+            for (int a = -n; a <= n; ++a)
+                for (int b = -n; b <= n; ++b)
+                    if (a * a + b * b <= n * n) low = std::min(low, flat_with_boxes(x + 0.05 * a, y + 0.05 * b));
+            return low;
+        };
+        return compare(log_path, channel, flat_with_boxes, ground, obstacle_height, all);
     }
     return floor_study(o);
 }

@@ -14,7 +14,8 @@ Eigen::Vector2d cell_centre_world(const MapSnapshot& m, int i, int j)
     return m.pose.position_m.head<2>() + Eigen::Vector2d(c * mx - s * my, s * mx + c * my);
 }
 
-MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, double)>& truth, double obstacle_height_m)
+MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, double)>& truth, double obstacle_height_m,
+                    const std::function<double(double, double)>& ground)
 {
     MapMetrics r;
     double sum = 0.0, sum2 = 0.0, var_sum = 0.0;
@@ -40,8 +41,11 @@ MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, dou
                 var_sum += m.variance_z_m2[k];
                 ++var_n;
             }
-            const bool obstacle = t > obstacle_height_m;
-            const bool seen = z > 0.5 * obstacle_height_m;
+            double g = ground ? ground(w.x(), w.y()) : 0.0;
+            if (!std::isfinite(g)) g = t;
+            // 1e-5: true heights are float32 (a 0.2 m box on ground at 1.5 m stands 0.19999999 m).
+            const bool obstacle = t - g >= obstacle_height_m - 1e-5;
+            const bool seen = z - g > 0.5 * obstacle_height_m;
             r.obstacle_cells += obstacle ? 1 : 0;
             r.obstacles_detected += obstacle && seen ? 1 : 0;
             r.false_obstacles += !obstacle && seen ? 1 : 0;

@@ -1,5 +1,5 @@
 // A map against ground truth: the height error of the known cells (RMSE, bias), coverage,
-// and obstacle detection (cells whose true height is above a threshold).
+// and obstacle detection (cells whose true height stands above the local ground by a threshold).
 #pragma once
 
 #include <cstdint>
@@ -17,8 +17,8 @@ struct MapMetrics
     double bias_m = 0.0;      // mean of (map - truth) over known cells
     double rmse_m = 0.0;      // root mean square of (map - truth) over known cells
     double mean_cell_variance_m2 = 0.0;  // mean of the cells' own variance (eq. 22 or 32)
-    int obstacle_cells = 0;   // known cells whose truth is above the threshold
-    int obstacles_detected = 0;  // ... and whose map height is above half the threshold
+    int obstacle_cells = 0;   // known cells whose truth stands the threshold or more above the local ground
+    int obstacles_detected = 0;  // ... and whose map height stands above it by more than half the threshold
     int false_obstacles = 0;  // known cells below the threshold that the map puts above half of it
     // The highest sample of each known cell (max_z_m) against the truth: a wall's cell
     // says how tall the wall is where its mean, which also holds the ground in front of
@@ -31,8 +31,10 @@ struct MapMetrics
 
 // truth(x_m, y_m): the ENU height at a world position, NaN where it is not defined (those
 // cells are not compared). Cells are placed in the world with the snapshot's pose.
+// ground(x_m, y_m): the local ground there (e.g. the lowest true height within 0.3 m), which
+// obstacle heights are measured from (NaN: the cell is no obstacle); without it, 0.
 MapMetrics evaluate(const MapSnapshot& map, const std::function<double(double, double)>& truth,
-                    double obstacle_height_m = 0.2);
+                    double obstacle_height_m = 0.2, const std::function<double(double, double)>& ground = {});
 
 // ENU position of the centre of cell (i, j) of the snapshot.
 Eigen::Vector2d cell_centre_world(const MapSnapshot& map, int i, int j);

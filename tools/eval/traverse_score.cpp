@@ -1,0 +1,474 @@
+#include "traverse_score.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include <ugv/candidate_arcs_t.hpp>
+#include <ugv/traversability_map_t.hpp>
+
+#include "ugv/bus/typed.hpp"
+#include "ugv/terrain/evaluation.hpp"
+#include "ugv/traverse/candidate_arcs.hpp"
+
+namespace ugv::eval {
+namespace {
+
+constexpr int kMaxCells = 4'000'000;  // as lib/traverse's check_grid
+
+bool finite_pose(const pose_t& p)
+{
+    for (double v : p.position)
+        if (!std::isfinite(v)) return false;
+    double n2 = 0.0;
+    for (double v : p.orientation) {
+        if (!std::isfinite(v)) return false;
+        n2 += v * v;
+    }
+    return n2 > 0.25;
+}
+
+terrain::Pose to_pose(const pose_t& p)
+{
+    terrain::Pose out;
+    out.utime_us = p.utime;
+    out.position_m = {p.position[0], p.position[1], p.position[2]};
+    out.orientation = Eigen::Quaterniond(p.orientation[0], p.orientation[1], p.orientation[2], p.orientation[3]).normalized();
+    return out;
+}
+
+// Why a traversability map cannot be scored (empty: it can).
+std::string check_map(const traversability_map_t& m)
+{
+    if (!finite_pose(m.pose)) return "pose not finite";
+    if (!(std::isfinite(m.resolution) && m.resolution > 0.0f)) return "resolution not positive";
+    if (m.nx <= 0 || m.ny <= 0 || static_cast<int64_t>(m.nx) * m.ny > kMaxCells ||
+        static_cast<int64_t>(m.nx) * m.ny != m.ncells)
+        return "sizes disagree";
+    if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.residual_yaw))
+        return "origin or residual yaw not finite";
+    for (int8_t c : m.cell_class)
+        if (c < traversability_map_t::CLASS_UNKNOWN || c > traversability_map_t::CLASS_NEGATIVE_OBSTACLE)
+            return "cell class out of range";
+    return {};
+}
+
+std::string check_arcs(const candidate_arcs_t& a)
+{
+    if (!finite_pose(a.pose)) return "pose not finite";
+    if (!(std::isfinite(a.length_m) && a.length_m > 0.0f && a.length_m < 1000.0f)) return "length not positive";
+    if (!(std::isfinite(a.swept_width_m) && a.swept_width_m > 0.0f && a.swept_width_m < 100.0f))
+        return "swept width not positive";
+    for (float k : a.curvature)
+        if (!std::isfinite(k)) return "curvature not finite";
+    return {};
+}
+
+// One traversability map placed in the world with the terrain library's transform
+// (terrain::cell_centre_world); its inverse is taken from the same transform's axes.
+class PlacedClasses
+{
+public:
+    explicit PlacedClasses(const traversability_map_t& m) : cls_(m.cell_class)
+    {
+        snap_.pose = to_pose(m.pose);
+        snap_.resolution_m = m.resolution;
+        snap_.nx = m.nx;
+        snap_.ny = m.ny;
+        snap_.origin_x_m = m.origin_x;
+        snap_.origin_y_m = m.origin_y;
+        snap_.residual_yaw_rad = m.residual_yaw;
+        const Eigen::Vector2d c00 = terrain::cell_centre_world(snap_, 0, 0);
+        axis_i_ = (terrain::cell_centre_world(snap_, 1, 0) - c00) / snap_.resolution_m;
+        axis_j_ = (terrain::cell_centre_world(snap_, 0, 1) - c00) / snap_.resolution_m;
+        corner_ = c00 - 0.5 * snap_.resolution_m * (axis_i_ + axis_j_);
+        const double yaw = snap_.pose.yaw_rad();
+        cos_yaw_ = std::cos(yaw);
+        sin_yaw_ = std::sin(yaw);
+    }
+    int nx() const { return snap_.nx; }
+    int ny() const { return snap_.ny; }
+    double resolution() const { return snap_.resolution_m; }
+    int8_t cls(int i, int j) const { return cls_[static_cast<std::size_t>(i * snap_.ny + j)]; }
+    Eigen::Vector2d centre_world(int i, int j) const { return terrain::cell_centre_world(snap_, i, j); }
+    const Eigen::Vector2d& axis_i() const { return axis_i_; }
+    const Eigen::Vector2d& axis_j() const { return axis_j_; }
+    // The cell holding world point w; false outside the map.
+    bool cell_at(const Eigen::Vector2d& w, int& i, int& j) const
+    {
+        const Eigen::Vector2d d = w - corner_;
+        const double u = std::floor(d.dot(axis_i_) / snap_.resolution_m), v = std::floor(d.dot(axis_j_) / snap_.resolution_m);
+        if (!(u >= 0 && u < snap_.nx && v >= 0 && v < snap_.ny)) return false;
+        i = static_cast<int>(u);
+        j = static_cast<int>(v);
+        return true;
+    }
+    bool known_at(const Eigen::Vector2d& w) const
+    {
+        int i, j;
+        return cell_at(w, i, j) && cls(i, j) != traversability_map_t::CLASS_UNKNOWN;
+    }
+    // World -> body frame (x forward, y left) with the pose's position and yaw.
+    Eigen::Vector2d body(const Eigen::Vector2d& w) const
+    {
+        const Eigen::Vector2d d = w - snap_.pose.position_m.head<2>();
+        return {cos_yaw_ * d.x() + sin_yaw_ * d.y(), -sin_yaw_ * d.x() + cos_yaw_ * d.y()};
+    }
+    Eigen::Vector2d position() const { return snap_.pose.position_m.head<2>(); }
+
+private:
+    terrain::MapSnapshot snap_;
+    std::vector<int8_t> cls_;
+    Eigen::Vector2d axis_i_, axis_j_, corner_;
+    double cos_yaw_ = 1.0, sin_yaw_ = 0.0;
+};
+
+bool is_obstacle(int8_t c)
+{
+    return c == traversability_map_t::CLASS_OBSTACLE || c == traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
+}
+bool is_obstacle(TruthClass c) { return c == TruthClass::obstacle || c == TruthClass::negative; }
+
+// The truth of a map cell from the columns under a grid of points at the truth's resolution
+// over it: obstacle if any is, else negative if any is, else traversable (none: no column).
+TruthClass cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i, int j)
+{
+    const double res = map.resolution();
+    const int n = std::max(1, static_cast<int>(std::ceil(res / truth.field().resolution_m - 1e-6)));
+    const Eigen::Vector2d c = map.centre_world(i, j);
+    TruthClass out = TruthClass::none;
+    for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) {
+            const Eigen::Vector2d p = c + map.axis_i() * (res * ((a + 0.5) / n - 0.5)) +
+                                      map.axis_j() * (res * ((b + 0.5) / n - 0.5));
+            const TruthClass t = truth.class_at(p.x(), p.y());
+            if (t == TruthClass::obstacle) return t;
+            if (t == TruthClass::negative || (t == TruthClass::traversable && out == TruthClass::none)) out = t;
+        }
+    }
+    return out;
+}
+
+// A cell the map got wrong, for --misses: where it is and what each side says.
+void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClasses& map, int i, int j, const char* what,
+                TruthClass truth)
+{
+    if (out == nullptr) return;
+    const Eigen::Vector2d w = map.centre_world(i, j), b = map.body(w);
+    static const char* const names[] = {"none", "traversable", "obstacle", "negative"};
+    const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(m.ny) + static_cast<std::size_t>(j);
+    auto layer = [&](const std::vector<float>& v) {
+        char buf[32] = "null";
+        if (v.size() == m.cell_class.size() && std::isfinite(v[k])) std::snprintf(buf, sizeof buf, "%.3f", double(v[k]));
+        return std::string(buf);
+    };
+    std::fprintf(out,
+                 "{\"map_seq\": %lld, \"what\": \"%s\", \"i\": %d, \"j\": %d, \"x\": %.2f, \"y\": %.2f, "
+                 "\"body_x\": %.2f, \"body_y\": %.2f, \"truth\": \"%s\", \"map_class\": %d, \"step_m\": %s, "
+                 "\"drop_m\": %s, \"slope_deg\": %s}\n",
+                 static_cast<long long>(m.map_seq), what, i, j, w.x(), w.y(), b.x(), b.y(), names[static_cast<int>(truth)],
+                 map.cls(i, j), layer(m.step_m).c_str(), layer(m.drop_m).c_str(), layer(m.slope_deg).c_str());
+}
+
+void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const PlacedClasses& map, double range_m,
+                 std::FILE* misses, TraverseScore& s)
+{
+    const int nx = map.nx(), ny = map.ny();
+    std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) t[static_cast<std::size_t>(i * ny + j)] = cell_truth(truth, map, i, j);
+    // The one-cell tolerance: the 8-neighbourhood and the cell itself.
+    auto near = [&](int i, int j, auto&& pred) {
+        for (int a = std::max(0, i - 1); a <= std::min(nx - 1, i + 1); ++a)
+            for (int b = std::max(0, j - 1); b <= std::min(ny - 1, j + 1); ++b)
+                if (pred(a, b)) return true;
+        return false;
+    };
+    auto map_obstacle = [&](int a, int b) { return is_obstacle(map.cls(a, b)); };
+    auto truth_obstacle = [&](int a, int b) { return is_obstacle(t[static_cast<std::size_t>(a * ny + b)]); };
+    for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < ny; ++j) {
+            const TruthClass tc = t[static_cast<std::size_t>(i * ny + j)];
+            if (tc == TruthClass::none) continue;
+            const double ahead = map.body(map.centre_world(i, j)).x();
+            if (!(ahead >= 0.0 && ahead <= range_m)) continue;
+            const int8_t mc = map.cls(i, j);
+            const bool known = mc != traversability_map_t::CLASS_UNKNOWN;
+            if (tc == TruthClass::traversable) {
+                if (!known) continue;
+                ++s.traversable_known;
+                if (mc == traversability_map_t::CLASS_TRAVERSABLE || near(i, j, truth_obstacle)) continue;
+                if (mc == traversability_map_t::CLASS_OBSTACLE) ++s.false_obstacles;
+                else ++s.false_negative_obstacles;
+                print_miss(misses, m, map, i, j, "false", tc);
+                continue;
+            }
+            const bool positive = tc == TruthClass::obstacle;
+            ++(positive ? s.obstacle_cells : s.negative_cells);
+            if (!known) continue;
+            ++(positive ? s.obstacle_seen : s.negative_seen);
+            if (near(i, j, map_obstacle)) ++(positive ? s.obstacle_detected : s.negative_detected);
+            else print_miss(misses, m, map, i, j, "missed", tc);
+        }
+    }
+}
+
+struct TruthColumn
+{
+    Eigen::Vector2d body_m;
+    bool seen;  // its map cell is known
+};
+
+void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candidate_arcs_t& arcs, double rear_x_m,
+                double front_x_m, TraverseScore& s)
+{
+    traverse::Footprint fp;
+    fp.rear_x_m = rear_x_m;
+    fp.front_x_m = front_x_m;
+    fp.width_m = arcs.swept_width_m;  // the margin is in it
+    const double length = arcs.length_m;
+    const double half_width = 0.5 * fp.width_m, tip = std::max(std::abs(rear_x_m), std::abs(front_x_m));
+    const double corner = std::hypot(tip, half_width);
+    const double reach = length + corner;
+    // The truth's obstacle columns within reach of the body origin, in the body frame of the
+    // arcs' pose (the map's pose: the same map_seq).
+    const simworld::HeightField& f = truth.field();
+    const Eigen::Vector2d origin(arcs.pose.position[0], arcs.pose.position[1]);
+    std::vector<TruthColumn> columns;
+    int i0, j0, i1, j1;
+    const bool lo = truth.column_of(std::max(origin.x() - reach, f.origin_x_m), std::max(origin.y() - reach, f.origin_y_m), i0, j0);
+    const bool hi = truth.column_of(std::min(origin.x() + reach, f.origin_x_m + (f.nx - 0.5) * f.resolution_m),
+                                    std::min(origin.y() + reach, f.origin_y_m + (f.ny - 0.5) * f.resolution_m), i1, j1);
+    const double yaw = to_pose(arcs.pose).yaw_rad();
+    const double cy = std::cos(yaw), sy = std::sin(yaw);
+    if (lo && hi) {
+        for (int i = i0; i <= i1; ++i) {
+            for (int j = j0; j <= j1; ++j) {
+                if (!is_obstacle(truth.column_class(i, j))) continue;
+                const Eigen::Vector2d w(f.cell_x(i), f.cell_y(j));
+                const Eigen::Vector2d d = w - origin;
+                const Eigen::Vector2d b(cy * d.x() + sy * d.y(), -sy * d.x() + cy * d.y());
+                if (b.norm() > reach) continue;
+                columns.push_back({b, map.known_at(w)});
+            }
+        }
+    }
+    for (int k = 0; k < arcs.narcs; ++k) {
+        const double curv = arcs.curvature[static_cast<std::size_t>(k)];
+        bool blocked_seen = false, blocked_all = false;
+        for (const TruthColumn& c : columns) {
+            if (blocked_all && (blocked_seen || !c.seen)) continue;
+            // Outside the band the footprint can sweep (a strip, or an annulus about the turn
+            // centre from the inner side's radius to the outer front corner's): never covered.
+            if (std::abs(curv) < 1e-9) {
+                if (std::abs(c.body_m.y()) > half_width || c.body_m.x() < rear_x_m || c.body_m.x() > length + front_x_m)
+                    continue;
+            } else {
+                const double radius = 1.0 / std::abs(curv);
+                const double from_centre = (c.body_m - Eigen::Vector2d(0.0, 1.0 / curv)).norm();
+                if (from_centre < radius - half_width - 1e-6 || from_centre > std::hypot(radius + half_width, tip) + 1e-6)
+                    continue;
+            }
+            const double at = traverse::first_cover_s(curv, fp, 0.0, length, c.body_m, f.resolution_m);
+            if (std::isnan(at)) continue;
+            blocked_all = true;
+            if (c.seen) blocked_seen = true;
+            if (blocked_seen) break;
+        }
+        const bool said = arcs.blocked[static_cast<std::size_t>(k)] != 0;
+        ++s.arcs;
+        s.arcs_blocked += said ? 1 : 0;
+        s.arcs_truth_blocked += blocked_seen ? 1 : 0;
+        s.arcs_agree += said == blocked_seen ? 1 : 0;
+        s.arcs_truth_blocked_unrestricted += blocked_all ? 1 : 0;
+        s.arcs_agree_unrestricted += said == blocked_all ? 1 : 0;
+    }
+}
+
+std::string ratio(long num, long den)
+{
+    if (den <= 0) return "null";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.5f", static_cast<double>(num) / static_cast<double>(den));
+    return buf;
+}
+
+}  // namespace
+
+void TraverseScore::add(const TraverseScore& o)
+{
+    obstacle_cells += o.obstacle_cells, obstacle_seen += o.obstacle_seen, obstacle_detected += o.obstacle_detected;
+    negative_cells += o.negative_cells, negative_seen += o.negative_seen, negative_detected += o.negative_detected;
+    traversable_known += o.traversable_known, false_obstacles += o.false_obstacles;
+    false_negative_obstacles += o.false_negative_obstacles;
+    arcs += o.arcs, arcs_blocked += o.arcs_blocked;
+    arcs_truth_blocked += o.arcs_truth_blocked, arcs_agree += o.arcs_agree;
+    arcs_truth_blocked_unrestricted += o.arcs_truth_blocked_unrestricted;
+    arcs_agree_unrestricted += o.arcs_agree_unrestricted;
+}
+
+std::string TraverseScore::json() const
+{
+    std::ostringstream o;
+    o << "\"obstacle_cells\": " << obstacle_cells << ", \"obstacle_seen\": " << obstacle_seen
+      << ", \"obstacle_detected\": " << obstacle_detected
+      << ", \"obstacle_recall\": " << ratio(obstacle_detected, obstacle_seen) << ", \"negative_cells\": " << negative_cells
+      << ", \"negative_seen\": " << negative_seen << ", \"negative_detected\": " << negative_detected
+      << ", \"negative_recall\": " << ratio(negative_detected, negative_seen)
+      << ", \"recall\": " << ratio(obstacle_detected + negative_detected, obstacle_seen + negative_seen)
+      << ", \"traversable_known\": " << traversable_known << ", \"false_obstacles\": " << false_obstacles
+      << ", \"false_negative_obstacles\": " << false_negative_obstacles
+      << ", \"false_obstacle_rate\": " << ratio(false_obstacles + false_negative_obstacles, traversable_known)
+      << ", \"arcs\": " << arcs << ", \"arcs_blocked\": " << arcs_blocked
+      << ", \"arcs_truth_blocked\": " << arcs_truth_blocked << ", \"arcs_agree\": " << arcs_agree
+      << ", \"arc_agreement\": " << ratio(arcs_agree, arcs)
+      << ", \"arcs_truth_blocked_unrestricted\": " << arcs_truth_blocked_unrestricted
+      << ", \"arcs_agree_unrestricted\": " << arcs_agree_unrestricted
+      << ", \"arc_agreement_unrestricted\": " << ratio(arcs_agree_unrestricted, arcs);
+    return o.str();
+}
+
+TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
+{
+    const traverse::Footprint fp;
+    rear_x_m_ = fp.rear_x_m;
+    front_x_m_ = fp.front_x_m;
+    sub_ = app.add_subcommand("traverse", "the traversability maps and arcs of a log against a truth height field");
+    sub_->add_option("log", log_, "LCM log with traversability_map_t (and candidate_arcs_t)")->required()->check(CLI::ExistingFile);
+    sub_->add_option("--truth", truth_, "truth height field (ugv-sim world's run/truth.hf)")->required()->check(CLI::ExistingFile);
+    sub_->add_option("--channel", channel_, "channel of the traversability maps");
+    sub_->add_option("--arcs-channel", arcs_channel_, "channel of the candidate arcs");
+    sub_->add_option("--range-m", range_m_, "score the cells this far ahead of the vehicle (body x from 0)")
+        ->check(CLI::Range(0.0, 1000.0));
+    sub_->add_option("--rear-x-m", rear_x_m_, "the footprint's rear (body x, m) for judging arcs on the truth")
+        ->check(CLI::Range(-20.0, 0.0));
+    sub_->add_option("--front-x-m", front_x_m_, "the footprint's front (body x, m)")->check(CLI::Range(0.0, 20.0));
+    sub_->add_option("--max-step-m", rules_.max_step_m, "truth: a column this high above the lowest near it is an obstacle")
+        ->check(CLI::Range(0.01, 10.0));
+    sub_->add_option("--max-drop-m", rules_.max_drop_m, "truth: a column this low below the highest near it is a negative obstacle")
+        ->check(CLI::Range(0.01, 10.0));
+    sub_->add_option("--step-radius-m", rules_.step_radius_m, "truth: 'near' for steps and drops (m)")->check(CLI::Range(0.01, 5.0));
+    sub_->add_option("--ground-radius-m", rules_.ground_radius_m,
+                     "truth: the local ground at a step is the median within this (m)")
+        ->check(CLI::Range(0.05, 20.0));
+    sub_->add_option("--max-slope-deg", rules_.max_slope_deg, "truth: a steeper plane around a column is an obstacle")
+        ->check(CLI::Range(1.0, 89.0));
+    sub_->add_option("--slope-radius-m", rules_.slope_radius_m, "truth: the plane is fitted over this radius (m)")
+        ->check(CLI::Range(0.01, 5.0));
+    sub_->add_option("--misses", misses_,
+                     "write each missed truth obstacle and each false obstacle (cell, world and body position, both "
+                     "classes, the map's step, drop, slope) to this file, one JSON line each");
+    auto* all = sub_->add_flag("--all", all_, "a line for every map (the default)");
+    sub_->add_flag("--last", last_, "a line for the last map only")->excludes(all);
+}
+
+int TraverseScoreCommand::run() const
+{
+    std::shared_ptr<simworld::HeightField> field;
+    {
+        std::ifstream in(truth_, std::ios::binary);
+        std::stringstream bytes;
+        bytes << in.rdbuf();
+        try {
+            field = std::make_shared<simworld::HeightField>(simworld::decode_height_field(bytes.str()));
+        } catch (const std::invalid_argument& e) {
+            std::fprintf(stderr, "ugv-eval: %s: %s\n", truth_.c_str(), e.what());
+            return 2;
+        }
+    }
+    const TruthTerrain truth(field, rules_);
+    lcm::LogFile log(log_, "r");
+    if (!log.good()) {
+        std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", log_.c_str());
+        return 2;
+    }
+    // Maps in log order, the arcs by the terrain map they judged (the last of each map_seq).
+    std::vector<traversability_map_t> maps;
+    std::map<int64_t, candidate_arcs_t> arcs;
+    long malformed = 0, invalid_maps = 0, invalid_arcs = 0;
+    while (const lcm::LogEvent* ev = log.readNextEvent()) {
+        const auto size = static_cast<std::size_t>(ev->datalen);
+        if (ev->channel == channel_) {
+            traversability_map_t m;
+            if (!bus::decode_checked(ev->data, size, m)) ++malformed;
+            else if (const std::string why = check_map(m); !why.empty()) {
+                ++invalid_maps;
+                std::fprintf(stderr, "ugv-eval: %s: map seq %lld: %s (skipped)\n", channel_.c_str(),
+                             static_cast<long long>(m.seq), why.c_str());
+            } else {
+                if (last_) maps.clear();
+                maps.push_back(std::move(m));
+            }
+        } else if (ev->channel == arcs_channel_) {
+            candidate_arcs_t a;
+            if (!bus::decode_checked(ev->data, size, a)) ++malformed;
+            else if (const std::string why = check_arcs(a); !why.empty()) {
+                ++invalid_arcs;
+                std::fprintf(stderr, "ugv-eval: %s: arcs of map seq %lld: %s (skipped)\n", arcs_channel_.c_str(),
+                             static_cast<long long>(a.map_seq), why.c_str());
+            } else {
+                arcs[a.map_seq] = std::move(a);
+            }
+        }
+    }
+    if (malformed > 0)
+        std::fprintf(stderr, "ugv-eval: %ld message(s) on %s or %s in %s could not be decoded (skipped)\n", malformed,
+                     channel_.c_str(), arcs_channel_.c_str(), log_.c_str());
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> misses(nullptr, &std::fclose);
+    if (!misses_.empty()) {
+        misses.reset(std::fopen(misses_.c_str(), "w"));
+        if (!misses) {
+            std::fprintf(stderr, "ugv-eval: %s: cannot write\n", misses_.c_str());
+            return 2;
+        }
+    }
+    TraverseScore total;
+    long with_arcs = 0;
+    double worst_recall = 2.0, worst_false = -1.0, worst_agreement = 2.0;
+    for (const traversability_map_t& m : maps) {
+        const PlacedClasses placed(m);
+        TraverseScore s;
+        score_cells(truth, m, placed, range_m_, misses.get(), s);
+        const auto it = arcs.find(m.map_seq);
+        if (it != arcs.end()) {
+            score_arcs(truth, placed, it->second, rear_x_m_, front_x_m_, s);
+            ++with_arcs;
+        }
+        std::printf("{\"utime\": %lld, \"seq\": %lld, \"map_seq\": %lld, %s}\n", static_cast<long long>(m.utime),
+                    static_cast<long long>(m.seq), static_cast<long long>(m.map_seq), s.json().c_str());
+        const long seen = s.obstacle_seen + s.negative_seen;
+        if (seen > 0)
+            worst_recall = std::min(worst_recall, double(s.obstacle_detected + s.negative_detected) / double(seen));
+        if (s.traversable_known > 0)
+            worst_false = std::max(worst_false, double(s.false_obstacles + s.false_negative_obstacles) /
+                                                    double(s.traversable_known));
+        if (s.arcs > 0) worst_agreement = std::min(worst_agreement, double(s.arcs_agree) / double(s.arcs));
+        total.add(s);
+    }
+    auto worst = [](double v, bool valid) {
+        if (!valid) return std::string("null");
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.5f", v);
+        return std::string(buf);
+    };
+    std::printf("{\"summary\": true, \"maps\": %zu, \"maps_with_arcs\": %ld, \"malformed\": %ld, \"invalid_maps\": %ld, "
+                "\"invalid_arcs\": %ld, \"range_m\": %g, %s, \"worst_recall\": %s, \"worst_false_obstacle_rate\": %s, "
+                "\"worst_arc_agreement\": %s}\n",
+                maps.size(), with_arcs, malformed, invalid_maps, invalid_arcs, range_m_, total.json().c_str(),
+                worst(worst_recall, worst_recall <= 1.0).c_str(), worst(worst_false, worst_false >= 0.0).c_str(),
+                worst(worst_agreement, worst_agreement <= 1.0).c_str());
+    if (maps.empty()) {
+        std::fprintf(stderr, "ugv-eval: no traversability map on %s in %s\n", channel_.c_str(), log_.c_str());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace ugv::eval

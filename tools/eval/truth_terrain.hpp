@@ -1,0 +1,66 @@
+// The simulator's truth height field judged column by column with the traversability rules
+// (docs/traverse.md section 4): every height relative to the column's neighbours, never to
+// an absolute ground level. Shared by `ugv-eval traverse` and `ugv-eval compare`.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "ugv/simworld/height_field.hpp"
+
+namespace ugv::eval {
+
+// The defaults are lib/traverse's ClassifierConfig's, so the truth and the map use one rule
+// (docs/traverse.md section 4).
+struct TruthRules
+{
+    double max_step_m = 0.2;      // standing this high above the lowest column near it ...
+    double max_drop_m = 0.2;      // lying this low below the highest column near it ...
+    double step_radius_m = 0.3;   // "near": column centres within this distance
+    double ground_radius_m = 1.5; // ... and as far from the local ground (the median within this): the
+                                  // side of a step that differs from its surroundings is the obstacle
+    double max_slope_deg = 25;    // a steeper plane fitted around the column: obstacle ...
+    double slope_radius_m = 0.5;  // ... fitted over the columns within this, where no step obstacle is
+};
+
+enum class TruthClass : uint8_t { none = 0, traversable = 1, obstacle = 2, negative = 3 };
+
+class TruthTerrain
+{
+public:
+    // Throws std::invalid_argument on a non-positive or non-finite rule.
+    TruthTerrain(std::shared_ptr<const simworld::HeightField> field, const TruthRules& rules);
+
+    // The class of column (i, j) (none outside the field or where its height is not finite).
+    // Computed on first use and kept: a run's log looks at the same columns many times.
+    TruthClass column_class(int i, int j) const;
+    // The class of the column under world point (x, y).
+    TruthClass class_at(double x_m, double y_m) const;
+    // The lowest column within step_radius_m of the column under (x, y): the local ground
+    // (NaN outside the field).
+    double local_ground_at(double x_m, double y_m) const;
+    // Column indices of world point (x, y); false outside the field.
+    bool column_of(double x_m, double y_m, int& i, int& j) const;
+
+    const simworld::HeightField& field() const { return *field_; }
+    const TruthRules& rules() const { return rules_; }
+
+private:
+    TruthClass step_class(int i, int j) const;  // by the step and drop rules alone
+    TruthClass compute(int i, int j) const;
+
+    std::shared_ptr<const simworld::HeightField> field_;
+    TruthRules rules_;
+    std::vector<std::pair<int, int>> step_disc_;   // offsets within step_radius_m
+    std::vector<std::pair<int, int>> slope_disc_;  // offsets within slope_radius_m
+    std::vector<std::pair<int, int>> ground_disc_; // every third column within ground_radius_m
+    double slope_d2_ = 0;                          // sum of di^2 over it (= of dj^2)
+    double max_slope_tan_ = 0;
+    mutable std::vector<uint8_t> cache_;           // TruthClass + 1, 0 = not computed
+    mutable std::vector<uint8_t> step_cache_;      // the same for step_class
+    mutable std::vector<float> around_;
+};
+
+}  // namespace ugv::eval
