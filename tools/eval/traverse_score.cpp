@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <ugv/candidate_arcs_t.hpp>
+#include <ugv/sim_truth_t.hpp>
 #include <ugv/traversability_map_t.hpp>
 
 #include "ugv/bus/typed.hpp"
@@ -350,13 +351,12 @@ TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
     sub_->add_option("--rear-x-m", rear_x_m_, "the footprint's rear (body x, m) for judging arcs on the truth")
         ->check(CLI::Range(-20.0, 0.0));
     sub_->add_option("--front-x-m", front_x_m_, "the footprint's front (body x, m)")->check(CLI::Range(0.0, 20.0));
-    sub_->add_option("--max-step-m", rules_.max_step_m, "truth: a column this high above the lowest near it is an obstacle")
+    sub_->add_option("--max-step-m", rules_.max_step_m, "truth: a column this high above the local ground is an obstacle")
         ->check(CLI::Range(0.01, 10.0));
-    sub_->add_option("--max-drop-m", rules_.max_drop_m, "truth: a column this low below the highest near it is a negative obstacle")
+    sub_->add_option("--max-drop-m", rules_.max_drop_m, "truth: a column this low below the local ground is a negative obstacle")
         ->check(CLI::Range(0.01, 10.0));
-    sub_->add_option("--step-radius-m", rules_.step_radius_m, "truth: 'near' for steps and drops (m)")->check(CLI::Range(0.01, 5.0));
     sub_->add_option("--ground-radius-m", rules_.ground_radius_m,
-                     "truth: the local ground at a step is the median within this (m)")
+                     "truth: the local ground is the detrended median within this (m)")
         ->check(CLI::Range(0.05, 20.0));
     sub_->add_option("--max-slope-deg", rules_.max_slope_deg, "truth: a steeper plane around a column is an obstacle")
         ->check(CLI::Range(1.0, 89.0));
@@ -365,6 +365,10 @@ TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
     sub_->add_option("--misses", misses_,
                      "write each missed truth obstacle and each false obstacle (cell, world and body position, both "
                      "classes, the map's step, drop, slope) to this file, one JSON line each");
+    sub_->add_option("--pose", pose_,
+                     "where the maps are placed in the world: the simulator's true pose at the map's time (truth), "
+                     "the map's own (estimate), or truth when the log has SIM_TRUTH (auto)")
+        ->check(CLI::IsMember({"auto", "truth", "estimate"}));
     auto* all = sub_->add_flag("--all", all_, "a line for every map (the default)");
     sub_->add_flag("--last", last_, "a line for the last map only")->excludes(all);
 }
@@ -393,8 +397,15 @@ int TraverseScoreCommand::run() const
     std::vector<traversability_map_t> maps;
     std::map<int64_t, candidate_arcs_t> arcs;
     long malformed = 0, invalid_maps = 0, invalid_arcs = 0;
+    std::vector<sim_truth_t> truth_poses;  // SIM_TRUTH in log order
     while (const lcm::LogEvent* ev = log.readNextEvent()) {
         const auto size = static_cast<std::size_t>(ev->datalen);
+        if (ev->channel == "SIM_TRUTH" && pose_ != "estimate") {
+            sim_truth_t t;
+            if (bus::decode_checked(ev->data, size, t) && (truth_poses.empty() || t.utime > truth_poses.back().utime))
+                truth_poses.push_back(std::move(t));
+            continue;
+        }
         if (ev->channel == channel_) {
             traversability_map_t m;
             if (!bus::decode_checked(ev->data, size, m)) ++malformed;
@@ -429,6 +440,24 @@ int TraverseScoreCommand::run() const
             return 2;
         }
     }
+    if (pose_ == "truth" && truth_poses.empty()) {
+        std::fprintf(stderr, "ugv-eval: %s: no SIM_TRUTH to place the maps with (--pose truth)\n", log_.c_str());
+        return 2;
+    }
+    // The egocentric map is what the vehicle sees around itself: placed with the true pose it
+    // is judged on that alone, not on the estimator's error in placing the vehicle (its yaw
+    // before the first course over ground is off by up to 0.3 rad).
+    auto to_truth = [&](pose_t& p, int64_t utime) {
+        if (truth_poses.empty()) return;
+        auto it = std::lower_bound(truth_poses.begin(), truth_poses.end(), utime,
+                                   [](const sim_truth_t& t, int64_t u) { return t.utime < u; });
+        if (it == truth_poses.end()) --it;
+        if (it != truth_poses.begin() && std::llabs(std::prev(it)->utime - utime) < std::llabs(it->utime - utime)) --it;
+        for (int k = 0; k < 3; ++k) p.position[k] = it->position[k];
+        for (int k = 0; k < 4; ++k) p.orientation[k] = it->orientation[k];
+    };
+    for (traversability_map_t& m : maps) to_truth(m.pose, m.utime);
+    for (auto& [seq, a] : arcs) to_truth(a.pose, a.utime);
     TraverseScore total;
     long with_arcs = 0;
     double worst_recall = 2.0, worst_false = -1.0, worst_agreement = 2.0;

@@ -47,6 +47,7 @@ private:
     double rear_x_m_, front_x_m_;  // the footprint's, lengthwise; its width is the arcs' swept width
     TruthRules rules_;
     bool all_ = false, last_ = false;
+    std::string pose_ = "auto";  // auto | truth | estimate: where the maps are placed in the world
 };
 
 }  // namespace ugv::eval

@@ -89,33 +89,50 @@ TruthClass TruthTerrain::step_class(int i, int j) const
     TruthClass out = TruthClass::none;
     const double z = f.at(i, j);
     if (std::isfinite(z)) {
-        double low = z, high = z;
-        for (const auto& [di, dj] : step_disc_) {
+        // The local ground: the columns within ground_radius (every third), the plane
+        // through them by least squares, its slope taken out, and the median of what is
+        // left (a box or ditch narrower than the radius is the minority; a slope is its own
+        // ground). The column is an obstacle standing max_step above it, a negative one
+        // lying max_drop below.
+        around_.clear();
+        offsets_.clear();
+        double s0 = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, sz = 0, saz = 0, sbz = 0;
+        for (const auto& [di, dj] : ground_disc_) {
             const int a = i + di, b = j + dj;
             if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
             const double h = f.at(a, b);
             if (!std::isfinite(h)) continue;
-            low = std::min(low, h);
-            high = std::max(high, h);
+            const double dz = h - z;
+            around_.push_back(static_cast<float>(dz));
+            offsets_.emplace_back(di, dj);
+            s0 += 1;
+            sa += di;
+            sb += dj;
+            saa += di * di;
+            sbb += dj * dj;
+            sab += di * dj;
+            sz += dz;
+            saz += di * dz;
+            sbz += dj * dz;
         }
-        const bool up = z - low >= rules_.max_step_m - kHeightTolerance;
-        const bool down = high - z >= rules_.max_drop_m - kHeightTolerance;
-        out = TruthClass::traversable;
-        if (up || down) {
-            // At a step: which side differs from the local ground (the median around)?
-            around_.clear();
-            for (const auto& [di, dj] : ground_disc_) {
-                const int a = i + di, b = j + dj;
-                if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
-                const float h = f.at(a, b);
-                if (std::isfinite(h)) around_.push_back(h);
-            }
+        double ga = 0, gb = 0;
+        const double caa = saa - sa * sa / std::max(s0, 1.0), cbb = sbb - sb * sb / std::max(s0, 1.0);
+        const double cab = sab - sa * sb / std::max(s0, 1.0), det = caa * cbb - cab * cab;
+        if (s0 >= 6 && det > 1e-9 * s0 * s0) {
+            ga = (cbb * (saz - sa * sz / s0) - cab * (sbz - sb * sz / s0)) / det;
+            gb = (caa * (sbz - sb * sz / s0) - cab * (saz - sa * sz / s0)) / det;
+        }
+        for (std::size_t u = 0; u < around_.size(); ++u)
+            around_[u] -= static_cast<float>(ga * offsets_[u].first + gb * offsets_[u].second);
+        double ground = z;
+        if (!around_.empty()) {
             const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
             std::nth_element(around_.begin(), mid, around_.end());
-            const double ground = around_.empty() ? z : static_cast<double>(*mid);
-            if (up && z - ground >= rules_.max_step_m - kHeightTolerance) out = TruthClass::obstacle;
-            else if (down && ground - z >= rules_.max_drop_m - kHeightTolerance) out = TruthClass::negative;
+            ground = z + static_cast<double>(*mid);
         }
+        out = TruthClass::traversable;
+        if (z - ground >= rules_.max_step_m - kHeightTolerance) out = TruthClass::obstacle;
+        else if (ground - z >= rules_.max_drop_m - kHeightTolerance) out = TruthClass::negative;
     }
     slot = static_cast<uint8_t>(static_cast<uint8_t>(out) + 1);
     return out;

@@ -16,11 +16,11 @@ namespace ugv::eval {
 // (docs/traverse.md section 4).
 struct TruthRules
 {
-    double max_step_m = 0.2;      // standing this high above the lowest column near it ...
-    double max_drop_m = 0.2;      // lying this low below the highest column near it ...
-    double step_radius_m = 0.3;   // "near": column centres within this distance
-    double ground_radius_m = 1.5; // ... and as far from the local ground (the median within this): the
-                                  // side of a step that differs from its surroundings is the obstacle
+    double max_step_m = 0.2;      // standing this high above the local ground: obstacle
+    double max_drop_m = 0.2;      // lying this low below it: negative obstacle
+    double step_radius_m = 0.3;   // ugv-eval compare only: its local ground is the lowest column this near
+    double ground_radius_m = 1.5; // the local ground: the columns within this, their plane's slope taken
+                                  // out, the median
     double max_slope_deg = 25;    // a steeper plane fitted around the column: obstacle ...
     double slope_radius_m = 0.5;  // ... fitted over the columns within this, where no step obstacle is
 };
@@ -48,7 +48,7 @@ public:
     const TruthRules& rules() const { return rules_; }
 
 private:
-    TruthClass step_class(int i, int j) const;  // by the step and drop rules alone
+    TruthClass step_class(int i, int j) const;  // by the height over the local ground alone
     TruthClass compute(int i, int j) const;
 
     std::shared_ptr<const simworld::HeightField> field_;
@@ -61,6 +61,7 @@ private:
     mutable std::vector<uint8_t> cache_;           // TruthClass + 1, 0 = not computed
     mutable std::vector<uint8_t> step_cache_;      // the same for step_class
     mutable std::vector<float> around_;
+    mutable std::vector<std::pair<int, int>> offsets_;
 };
 
 }  // namespace ugv::eval

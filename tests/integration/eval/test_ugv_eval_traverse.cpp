@@ -53,9 +53,8 @@ simworld::HeightField field(double ground, const std::vector<Box>& boxes)
 
 // The test's own reading of the rules, for small boxes and ditches on flat ground (the
 // slope rule off; the local ground is the flat ground): a column is an obstacle if it stands
-// 0.2 m above the ground and a column 0.2 m lower lies within 0.3 m, negative if it lies
-// 0.2 m below the ground and a column 0.2 m higher lies within 0.3 m; a cell takes the worst
-// of its columns.
+// 0.2 m above the ground, negative if it lies 0.2 m below it; a cell takes the worst of its
+// columns.
 std::vector<int8_t> oracle_classes(const simworld::HeightField& f, double ground)
 {
     std::vector<int8_t> cls(kN * kN, traversability_map_t::CLASS_TRAVERSABLE);
@@ -66,15 +65,9 @@ std::vector<int8_t> oracle_classes(const simworld::HeightField& f, double ground
                 for (int b = 0; b < 4; ++b) {
                     const double x = kOriginX + double(kCell) * i + kRes * (a + 0.5), y = kOriginY + double(kCell) * j + kRes * (b + 0.5);
                     const double z = f.height_at(x, y);
-                    for (int da = -6; da <= 6; ++da) {
-                        for (int db = -6; db <= 6; ++db) {
-                            if (da * da + db * db > 36) continue;
-                            const double n = f.height_at(x + da * kRes, y + db * kRes);
-                            if (z - n >= 0.2 - 1e-5 && z - ground >= 0.2 - 1e-5) worst = traversability_map_t::CLASS_OBSTACLE;
-                            if (n - z >= 0.2 - 1e-5 && ground - z >= 0.2 - 1e-5 && worst != traversability_map_t::CLASS_OBSTACLE)
-                                worst = traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
-                        }
-                    }
+                    if (z - ground >= 0.2 - 1e-5) worst = traversability_map_t::CLASS_OBSTACLE;
+                    if (ground - z >= 0.2 - 1e-5 && worst != traversability_map_t::CLASS_OBSTACLE)
+                        worst = traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
                 }
             }
             cls[static_cast<std::size_t>(i * kN + j)] = worst;
@@ -192,29 +185,29 @@ struct World
 TEST_CASE("ugv-eval traverse: a perfect map on ground at 1.5 m has recall 1, no false obstacle, arcs agree")
 {
     World w(1.5);
-    // By hand: box A's 25 cells less its centre one (no column of it within 0.3 m of the
-    // ground) are obstacles, and box B's 4; the ground at their feet is no negative obstacle
-    // (it is the local ground). Ditch C: 24 negative cells, its rim no obstacle.
+    // By hand: box A's 25 cells are obstacles, and box B's 4; the ground at their feet is no
+    // negative obstacle (it is the local ground). Ditch C: 25 negative cells, its rim no
+    // obstacle.
     const std::vector<int8_t>& p = w.perfect;
     long obstacles = 0, negatives = 0;
     for (int8_t c : p) {
         obstacles += c == traversability_map_t::CLASS_OBSTACLE;
         negatives += c == traversability_map_t::CLASS_NEGATIVE_OBSTACLE;
     }
-    REQUIRE(obstacles == 24 + 4);
-    REQUIRE(negatives == 24);
+    REQUIRE(obstacles == 25 + 4);
+    REQUIRE(negatives == 25);
     const candidate_arcs_t arcs = arcs_msg(1.5, {0, 1, 0});
     const Run r = w.score(trav_map(1.5, p), &arcs);
     INFO(r.out);
     REQUIRE(r.rc == 0);
     CHECK(r.get("maps") == 1);
-    CHECK(r.get("obstacle_cells") == 28);
-    CHECK(r.get("obstacle_seen") == 28);
-    CHECK(r.get("obstacle_detected") == 28);
-    CHECK(r.get("negative_cells") == 24);
-    CHECK(r.get("negative_detected") == 24);
+    CHECK(r.get("obstacle_cells") == 29);
+    CHECK(r.get("obstacle_seen") == 29);
+    CHECK(r.get("obstacle_detected") == 29);
+    CHECK(r.get("negative_cells") == 25);
+    CHECK(r.get("negative_detected") == 25);
     CHECK(r.get("recall") == 1.0);
-    CHECK(r.get("traversable_known") == 75 * 100 - 52);
+    CHECK(r.get("traversable_known") == 75 * 100 - 54);
     CHECK(r.get("false_obstacles") == 0);
     CHECK(r.get("false_obstacle_rate") == 0.0);
     CHECK(r.get("arcs") == 3);
@@ -260,21 +253,21 @@ TEST_CASE("ugv-eval traverse: a missed box lowers the recall by its cells, a fal
     CHECK(lines_with("\"what\": \"missed\"") == 4);
     CHECK(lines_with("\"what\": \"false\"") == 2);
     CHECK(misses.find("\"x\": 10.10, \"y\": 2.10") != std::string::npos);
-    CHECK(r.get("obstacle_seen") == 28);
-    CHECK(r.get("obstacle_detected") == 24);
-    CHECK(r.get("negative_detected") == 24);
-    CHECK(r.get("recall") == Approx(48.0 / 52.0).margin(1e-5));
+    CHECK(r.get("obstacle_seen") == 29);
+    CHECK(r.get("obstacle_detected") == 25);
+    CHECK(r.get("negative_detected") == 25);
+    CHECK(r.get("recall") == Approx(50.0 / 54.0).margin(1e-5));
     CHECK(r.get("false_obstacles") == 1);
     CHECK(r.get("false_negative_obstacles") == 1);
-    CHECK(r.get("false_obstacle_rate") == Approx(2.0 / (7500 - 52)).margin(1e-5));
+    CHECK(r.get("false_obstacle_rate") == Approx(2.0 / (7500 - 54)).margin(1e-5));
     CHECK(r.get("arcs") == 0);
     CHECK(std::isnan(r.get("arc_agreement")));
 
     // A box the laser has not seen (its cells UNKNOWN) is not missed: recall back to 1.
     area(cls, 10.0, 2.0, 10.4, 2.4, traversability_map_t::CLASS_UNKNOWN);
     const Run u = w.score(trav_map(1.5, cls), nullptr);
-    CHECK(u.get("obstacle_cells") == 28);
-    CHECK(u.get("obstacle_seen") == 24);
+    CHECK(u.get("obstacle_cells") == 29);
+    CHECK(u.get("obstacle_seen") == 25);
     CHECK(u.get("recall") == 1.0);
     // Out of --range-m: box A at 6-7 m and B at 10 m are not scored within 5 m.
     const Run near = w.score(trav_map(1.5, cls), nullptr, {"--range-m", "5"});
