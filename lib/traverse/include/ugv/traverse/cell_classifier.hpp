@@ -16,14 +16,14 @@ enum class CellClass : int8_t { unknown = 0, traversable = 1, obstacle = 2, nega
 
 struct ClassifierConfig
 {
-    double max_step_m = 0.2;          // a step up at least this tall is an obstacle
-    double max_drop_m = 0.2;          // a drop at least this deep is a negative obstacle
-    double step_radius_m = 0.3;       // steps are measured against cells within this of the cell
+    double max_step_m = 0.2;          // a top this high above the local ground is an obstacle
+    double max_drop_m = 0.2;          // a bottom this deep below it is a negative obstacle
+    double step_radius_m = 0.3;       // step and drop (in the cost) against the cells within this
     double max_slope_deg = 25;        // a steeper neighbourhood is an obstacle
     double slope_radius_m = 0.5;      // the plane for the slope is fitted over this radius
-    double ground_radius_m = 1.5;     // the local ground: which side of a step is the obstacle
+    double ground_radius_m = 1.5;     // the local ground is taken over this radius
     double max_roughness_m = 0.15;    // a cell's height spread (sd) that costs 1
-    double min_support_samples = 2;   // samples a cell's top (or bottom) needs to count as a step
+    double min_support_samples = 2;   // samples near a cell's max (min) for it to be its top (bottom)
     double max_age_s = 60;            // data this old is UNKNOWN (certainty 0)
     double max_driven_m = 40;         // data seen this many metres of driving ago is UNKNOWN
 };
