@@ -12,10 +12,9 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Bits of a cell's flags: a step up to it, a drop down to it, an obstacle within the slope
-// window (the plane there says nothing about the ground's slope), its top max_step above the
-// local ground, its bottom max_drop below it.
-constexpr uint8_t kUp = 1, kDown = 2, kObstacleNear = 4, kHigh = 8, kLow = 16;
+// Bits of a cell's flags: its top max_step above the local ground, its bottom max_drop below
+// it, an obstacle within the slope window (the plane there says nothing about the slope).
+constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
 
 // A radius as the half-width of the square window of cells it covers (at least 1).
 int half_width(double radius_m, double resolution_m)
@@ -288,7 +287,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     }
 
     // 2. Steps and drops against the cells within step_radius (the cell itself included):
-    // step = own top - lowest bottom around; drop = highest mean around - own bottom.
+    // step = own top - lowest bottom around; drop = highest mean around - own bottom. They
+    // feed the cost only.
     const int hs = half_width(c.step_radius_m, g.resolution_m);
     tmp_.resize(n);
     for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(bottom_[k]) ? kInf : bottom_[k];
@@ -300,7 +300,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         if (std::isnan(top_[k])) continue;
         out.step_m[k] = std::max(0.0f, top_[k] - lowest_[k]);
         out.drop_m[k] = std::max(0.0f, highest_[k] - bottom_[k]);
-        edge_[k] = static_cast<uint8_t>((out.step_m[k] >= c.max_step_m ? kUp : 0) | (out.drop_m[k] >= c.max_drop_m ? kDown : 0));
     }
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
@@ -315,10 +314,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const std::vector<float>& ground_ = out.ground_m;
     for (std::size_t k = 0; k < n; ++k) {
         if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
-        uint8_t flags = edge_[k];
-        if (top_[k] - ground_[k] >= c.max_step_m) flags |= kHigh;
-        if (ground_[k] - bottom_[k] >= c.max_drop_m) flags |= kLow;
-        edge_[k] = flags;
+        if (top_[k] - ground_[k] >= c.max_step_m) edge_[k] |= kHigh;
+        if (ground_[k] - bottom_[k] >= c.max_drop_m) edge_[k] |= kLow;
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
     // is too: one stray return alone is not.
