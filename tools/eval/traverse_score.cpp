@@ -239,12 +239,23 @@ void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClass
 
 // Whether the terrain map holds samples of obstacle cell (i, j) and of the ground it stands
 // above (lies below) within `radius` cells (CellTruth).
-bool sampled_obstacle(const SampledExtremes& t, const CellTruth& c, int i, int j, int radius)
+bool sampled_obstacle(const SampledExtremes& t, const CellTruth& c, int i, int j, int radius, int slope_radius,
+                      double slope_span_m)
 {
     const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(t.ny) + static_cast<std::size_t>(j);
     const bool positive = c.cls == TruthClass::obstacle;
     if (positive ? !(t.max_z[k] >= c.above - kSampleTolerance) : !(t.min_z[k] <= c.below + kSampleTolerance)) return false;
-    if (positive && c.above == -std::numeric_limits<double>::infinity()) return true;  // a slope: the cell alone
+    if (positive && c.above == -std::numeric_limits<double>::infinity()) {
+        float high = -std::numeric_limits<float>::infinity(), low = std::numeric_limits<float>::infinity();
+        for (int a = std::max(0, i - slope_radius); a <= std::min(t.nx - 1, i + slope_radius); ++a) {
+            for (int b = std::max(0, j - slope_radius); b <= std::min(t.ny - 1, j + slope_radius); ++b) {
+                const std::size_t n = static_cast<std::size_t>(a) * static_cast<std::size_t>(t.ny) + static_cast<std::size_t>(b);
+                if (t.max_z[n] > high) high = t.max_z[n];
+                if (t.min_z[n] < low) low = t.min_z[n];
+            }
+        }
+        return high - low >= slope_span_m;
+    }
     for (int a = std::max(0, i - radius); a <= std::min(t.nx - 1, i + radius); ++a) {
         for (int b = std::max(0, j - radius); b <= std::min(t.ny - 1, j + radius); ++b) {
             if ((a - i) * (a - i) + (b - j) * (b - j) > radius * radius) continue;
@@ -276,7 +287,10 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
         return false;
     };
     auto map_obstacle = [&](int a, int b) { return is_obstacle(map.cls(a, b)); };
-    const int ground_cells = static_cast<int>(std::floor(truth.rules().ground_radius_m / map.resolution() + 1e-9));
+    const TruthRules& rules = truth.rules();
+    const int ground_cells = static_cast<int>(std::floor(rules.ground_radius_m / map.resolution() + 1e-9));
+    const int slope_cells = static_cast<int>(std::ceil(rules.slope_radius_m / map.resolution() - 1e-9));
+    const double slope_span_m = std::tan(rules.max_slope_deg * M_PI / 180.0) * rules.slope_radius_m;
     auto truth_obstacle = [&](int a, int b) { return is_obstacle(t[static_cast<std::size_t>(a * ny + b)]); };
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
@@ -303,7 +317,8 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
             if (detected) ++(positive ? s.obstacle_detected : s.negative_detected);
             const std::size_t k = static_cast<std::size_t>(i * ny + j);
             const double threshold = positive ? cells[k].above : cells[k].below;
-            const bool sampled = terrain != nullptr && sampled_obstacle(*terrain, cells[k], i, j, ground_cells);
+            const bool sampled = terrain != nullptr && sampled_obstacle(*terrain, cells[k], i, j, ground_cells,
+                                                                        slope_cells, slope_span_m);
             if (!detected) print_miss(misses, m, map, i, j, "missed", tc, terrain, threshold, sampled);
             if (!sampled) continue;
             ++s.sampled;
