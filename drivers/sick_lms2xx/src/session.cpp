@@ -328,6 +328,7 @@ Session::PumpResult Session::pump(int timeout_ms)
     if (read_some(std::min(timeout_ms, kReadSliceMs)) == io::ReadResult::Status::closed) return PumpResult::closed;
     if (static_cast<double>(now_us() - last_scan_us_) > silence_timeout_s() * 1e6) {
         ++stats_.timeouts;
+        ++stats_.silences;
         error_ = "no scan for " + std::to_string(silence_timeout_s()) + " s";
         return PumpResult::silence;
     }
@@ -351,6 +352,7 @@ void Session::run()
                 continue;
             }
             closed_ = false;
+            ++stats_.reopens;
             decoder_.reset();
         }
         if (!initialise()) {

@@ -2,8 +2,10 @@
 // whatever rate it was left (probing 9600 -> 19200 -> 38400 -> 500000), switches it to the
 // configured rate, stops streaming before reconfiguring, sets the variant, measuring mode
 // and units, starts streaming, and turns scan telegrams into time-stamped scans. Every
-// request has a timeout and retries; silence for several scan periods, a vanished device or
-// repeated NAKs send it back to probing, never out of run().
+// request has a timeout and retries; silence for several scan periods or repeated NAKs send
+// it back to probing on the same open port (a device that restarted streams only when
+// asked again); only a device that is gone (the stream says `closed`: EIO, hang-up, node
+// vanished or replaced) is reopened. Never out of run().
 //
 // Threads: run() blocks on the calling thread (a daemon's device thread). stats() may be
 // read from any thread.
@@ -66,6 +68,8 @@ struct SessionStats
     std::atomic<int64_t> naks{0};
     std::atomic<int64_t> timeouts{0};     // requests unanswered and scan silences
     std::atomic<int64_t> reconnects{0};   // times streaming was lost and recovery started
+    std::atomic<int64_t> silences{0};     // scan silences (the port stays open: re-initialised on it)
+    std::atomic<int64_t> reopens{0};      // the port closed and opened again: the device was gone
     std::atomic<int64_t> bytes_in{0};
     std::atomic<int64_t> bad_scans{0};    // good CRC but undecodable or wrong value count
     std::atomic<int64_t> clock_restarts{0};  // scan clock restarts (see ugv/io/periodic_clock.hpp)
@@ -79,6 +83,8 @@ struct SessionStats
         f("naks", naks.load());
         f("timeouts", timeouts.load());
         f("reconnects", reconnects.load());
+        f("silences", silences.load());
+        f("reopens", reopens.load());
         f("bytes_in", bytes_in.load());
         f("bad_scans", bad_scans.load());
         f("clock_restarts", clock_restarts.load());
