@@ -127,6 +127,11 @@ public:
     SessionState state() const { return state_; }
     const std::string& last_error() const { return error_; }
     const std::string& device_type() const { return device_type_; }
+    // From the last handshake: 200/211/220/221/291 (model.hpp; 0 = a type string not known),
+    // the status block's software version, the configuration block's length.
+    int device_model() const { return device_model_; }
+    const std::string& software_version() const { return software_version_; }
+    std::size_t config_block_bytes() const { return config_block_bytes_; }
     int device_baud() const { return device_baud_; }
     // Seconds without a scan after which the session re-initialises.
     double silence_timeout_s() const;
@@ -159,7 +164,9 @@ private:
     Decoder decoder_;
     SessionStats stats_;
     SessionState state_ = SessionState::stopped;
-    std::string error_, device_type_;
+    std::string error_, device_type_, software_version_;
+    int device_model_ = 0;
+    std::size_t config_block_bytes_ = 0;
     int device_baud_ = 0;
     bool closed_ = false;
     bool streaming_ = false;
