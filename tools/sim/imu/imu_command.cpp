@@ -75,7 +75,7 @@ int imu_main(int argc, char** argv)
     app.add_option("--serial", cfg.serial_number, "serial number (F1)")->capture_default_str();
     app.add_option("--clock-ppm", cfg.clock_ppm, "the unit's timer error")->capture_default_str();
     app.add_option("--attitude", attitude,
-                   "level | slow-yaw | bench (the motions of tests/bench/imu-signs.sh, in a 23 s loop)")
+                   "level | slow-yaw | bench (the motions of tests/bench/imu-signs.sh, in a 20 s loop)")
         ->check(CLI::IsMember({"level", "slow-yaw", "bench"}))
         ->capture_default_str();
     app.add_option("--roll-deg", roll_deg, "NED roll (level mode)")->capture_default_str();

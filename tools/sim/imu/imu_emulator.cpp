@@ -45,10 +45,11 @@ AttitudeFn bench_motions(double t0_s, double yaw0_rad)
         int axis;  // 0 roll, 1 pitch, 2 yaw; -1 level
         double from_deg, to_deg;
     };
+    // No hold at a displaced attitude: the only still moments are level at yaw0, where the
+    // bench arms, so the first motion after each is the one it asks for.
     static const Segment kCycle[] = {
-        {3, -1, 0, 0},  {1, 0, 0, 30},  {2, 0, 30, 30}, {1, 0, 30, 0},  {2, -1, 0, 0},
-        {1, 1, 0, 20},  {2, 1, 20, 20}, {1, 1, 20, 0},  {2, -1, 0, 0},
-        {2, 2, 0, -90}, {2, 2, -90, -90}, {2, 2, -90, 0}, {2, -1, 0, 0},
+        {3, -1, 0, 0}, {1, 0, 0, 30},  {1, 0, 30, 0},  {3, -1, 0, 0}, {1, 1, 0, 20}, {1, 1, 20, 0},
+        {3, -1, 0, 0}, {2, 2, 0, -90}, {2, 2, -90, 0}, {3, -1, 0, 0},
     };
     double cycle_s = 0;
     for (const auto& s : kCycle) cycle_s += s.seconds;
