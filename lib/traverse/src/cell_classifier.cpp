@@ -120,16 +120,6 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
     }
 }
 
-// The slope of the least-squares plane z = a + b i + c j from its centred moments (cells
-// as units); NaN when the cells are (nearly) on a line.
-float plane_slope_deg(double cii, double cjj, double cij, double ciz, double cjz, double count, double resolution_m)
-{
-    const double det = cii * cjj - cij * cij;
-    if (det < 1e-6 * count * count) return kNaN;
-    const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
-    return std::atan(static_cast<float>(std::sqrt(gi * gi + gj * gj) / resolution_m)) * static_cast<float>(180.0 / M_PI);
-}
-
 // (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
 // One column offset d of the slope's row pass: the row's weights w, heights z and obstacle
 // flags o, shifted by d, added into the five row sums and the obstacle count.
@@ -442,15 +432,26 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
             add_column_tap(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
                            sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+        // The plane's gradient (cells as units) from the centred moments, and the tangent of
+        // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
+        // and no call, so that it vectorises; the arc tangent follows.
+        tangent_.resize(w);
+        float* __restrict tangent = tangent_.data();
+        for (int j = 0; j < ny; ++j) {
+            const double c0 = s0[j];
+            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
+            const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
+            const double ciz = szp[j] - c0 * mp * mz, cjz = szq[j] - c0 * mq * mz;
+            const double det = cii * cjj - cij * cij;
+            const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
+            const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
+            tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
+        }
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
             if (so[j] > 0.5f) edge_[k] |= kObstacleNear;
-            const double c0 = s0[j];
-            if (c0 < min_cells) continue;  // too few cells for a plane
-            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
-            out.slope_deg[k] = plane_slope_deg(spp[j] - c0 * mp * mp, sqq[j] - c0 * mq * mq, spq[j] - c0 * mp * mq,
-                                               szp[j] - c0 * mp * mz, szq[j] - c0 * mq * mz, c0, g.resolution_m);
+            if (!std::isnan(tangent[j])) out.slope_deg[k] = std::atan(tangent[j]) * static_cast<float>(180.0 / M_PI);
         }
     }
 

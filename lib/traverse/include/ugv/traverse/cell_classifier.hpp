@@ -63,7 +63,7 @@ private:
     std::vector<float> top_, bottom_, lowest_, highest_, tmp_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
     std::vector<uint8_t> edge_, known_;
-    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_;
+    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_;
     std::vector<float> window_;
     // The local ground's: known flags (double), the means split by column parity, a lattice
     // row's column sums, a window's known points.
