@@ -6,10 +6,11 @@
 
 int main(int argc, char** argv)
 {
-    // 10 ms, not the 50 of the other processing daemons: a planner waits for ARCS, and the
-    // goal for the latency added to each map is 20 ms (docs/traverse.md); 100 wake-ups/s.
+    // Not batched: a planner waits for ARCS, and the goal for the latency added to each map
+    // is 20 ms (docs/traverse.md); a batch adds up to its period. The price: a wake-up per
+    // datagram on the group.
     ugv::daemon::Daemon d({.name = "ugv-traverse", .status_channel = "STATUS_TRAVERSE", .processing = true,
-                           .bus_batch_ms = 10},
+                           .bus_batch_ms = 0},
                           argc, argv);
     const ugv::traverse_daemon::TraverseConfig config = ugv::traverse_daemon::read_config(d.config());
     d.start();

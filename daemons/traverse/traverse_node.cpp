@@ -1,7 +1,11 @@
 #include "traverse_node.hpp"
 
 #include <exception>
+#include <stdexcept>
 #include <utility>
+
+#include <sys/eventfd.h>
+#include <unistd.h>
 
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
@@ -51,6 +55,13 @@ bool TraverseNode::on_map(const terrain_map_t& msg)
     return true;
 }
 
+void TraverseNode::keep(const terrain_map_t& msg)
+{
+    if (kept_) ++counters_.maps_skipped;
+    kept_map_ = msg;
+    kept_ = true;
+}
+
 int run(daemon::Daemon& d, const TraverseConfig& config)
 {
     // Flowing: ARCS published, i.e. maps come and are analysed (malformed ones are not).
@@ -83,8 +94,7 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
     };
     sync_counters();  // every counter is listed from the first status message on
     runtime::RateLimitedLog dropped_log;
-    bus::subscribe<terrain_map_t>(d.bus(), config.map_channel, [&](const std::string&, const terrain_map_t& m, int64_t) {
-        if (!stamps.accept(map_input, m.utime)) return;
+    const auto analyse = [&](const terrain_map_t& m) {
         if (!node.on_map(m)) {
             const std::string why = "map seq " + std::to_string(m.seq) + " dropped: " + node.why();
             dropped_log.log(spdlog::level::warn, "dropped", config.map_channel + " " + why, io::monotonic_us());
@@ -97,6 +107,27 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
             }
         }
         sync_counters();
+    };
+    // Live, a map is kept and analysed once the bus has been read (the event fd wakes the
+    // loop right after): maps that queued up meanwhile replace it, and only the newest is
+    // analysed. A replay analyses every map, in order.
+    const int wake_fd = d.replaying() ? -1 : ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+    if (!d.replaying() && wake_fd < 0) throw std::runtime_error("eventfd failed");
+    if (wake_fd >= 0)
+        d.add_fd(wake_fd, [&] {
+            uint64_t n = 0;
+            (void)!::read(wake_fd, &n, sizeof n);
+            if (node.has_kept()) analyse(node.take_kept());
+        });
+    bus::subscribe<terrain_map_t>(d.bus(), config.map_channel, [&](const std::string&, const terrain_map_t& m, int64_t) {
+        if (!stamps.accept(map_input, m.utime)) return;
+        if (wake_fd < 0) {
+            analyse(m);
+            return;
+        }
+        node.keep(m);
+        const uint64_t one = 1;
+        (void)!::write(wake_fd, &one, sizeof one);
     });
     const traverse::ArcSetConfig& a = config.analysis.arcs;
     spdlog::info("analysing {} -> {} + {} ({} arcs of |curvature| <= {} /m, {} m long, unknown cells {})",
@@ -104,6 +135,7 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
                  a.max_curvature_per_m, a.length_m,
                  a.unknown_policy == traverse::UnknownPolicy::cautious ? "cautious" : "optimistic");
     const int rc = d.run();
+    if (wake_fd >= 0) ::close(wake_fd);
     sync_counters();
     const auto& c = d.counters();
     spdlog::info("{} maps in, {} published, {} malformed, {} duplicates", c.get("maps_in"), c.get("maps_published"),

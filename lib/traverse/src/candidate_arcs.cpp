@@ -28,20 +28,20 @@ bool inside_footprint(const Footprint& f, double half_width_m, double x, double 
 // The map cell under each swept fine cell (-1: outside the map). Body -> map: turned by
 // +residual_yaw (cos c, sin s), then cells from the map's corner. One pass that vectorises;
 // the judging loop that follows reads the cells in order.
-void map_cells(const std::vector<CandidateArcs::SweptCell>& sweep, const TerrainGrid& g, float c, float s, float inv,
-               std::vector<int32_t>& cell_of)
+// Cells [from, to) of the sweep into cell_of[0, to - from).
+void map_cells(const CandidateArcs::SweptCell* sweep, std::size_t from, std::size_t to, const TerrainGrid& g, float c,
+               float s, float inv, int32_t* __restrict cell_of)
 {
-    cell_of.resize(sweep.size());
     const float ox = static_cast<float>(g.origin_x_m), oy = static_cast<float>(g.origin_y_m);
     const float nx = static_cast<float>(g.nx), ny = static_cast<float>(g.ny);
     const int32_t stride = g.ny;
-    for (std::size_t f = 0; f < sweep.size(); ++f) {
+    for (std::size_t f = from; f < to; ++f) {
         const float x = sweep[f].x_m, y = sweep[f].y_m;
         const float fi = (c * x - s * y - ox) * inv, fj = (s * x + c * y - oy) * inv;
         const bool inside = fi >= 0.0f && fj >= 0.0f && fi < nx && fj < ny;
         // Truncation is floor for the non-negative values kept.
         const int32_t cell = static_cast<int32_t>(inside ? fi : 0.0f) * stride + static_cast<int32_t>(inside ? fj : 0.0f);
-        cell_of[f] = inside ? cell : -1;
+        cell_of[f - from] = inside ? cell : -1;
     }
 }
 
@@ -164,13 +164,18 @@ void CandidateArcs::judge(const TerrainGrid& g, const TraversabilityLayers& laye
         v.curvature_per_m = curvatures_[a];
         v.clear_distance_m = config_.length_m;
         const std::vector<SweptCell>& sweep = sweeps_[a];
-        map_cells(sweep, g, static_cast<float>(c), static_cast<float>(sn), static_cast<float>(inv), cell_of_);
         // Cells counted once each; outside the map, a fine cell is a quarter of an unknown one.
+        // Mapped a block at a time: most blocked arcs stop early.
+        constexpr std::size_t kBlock = 256;
+        cell_of_.resize(kBlock);
         double swept = 0, unknown = 0;
         int known = 0;
         double cost = 0.0;
         for (std::size_t f = 0; f < sweep.size(); ++f) {
-            const int32_t cell = cell_of_[f];
+            if (f % kBlock == 0)
+                map_cells(sweep.data(), f, std::min(sweep.size(), f + kBlock), g, static_cast<float>(c),
+                          static_cast<float>(sn), static_cast<float>(inv), cell_of_.data());
+            const int32_t cell = cell_of_[f % kBlock];
             if (cell < 0) {
                 swept += 0.25;
                 unknown += 0.25;

@@ -1,5 +1,7 @@
 #include "ugv/traverse/cell_classifier.hpp"
 
+#include "local_ground.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,11 +19,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
 
-// A radius as the half-width of the square window of cells it covers (at least 1).
-int half_width(double radius_m, double resolution_m)
-{
-    return std::max(1, static_cast<int>(std::floor(radius_m / resolution_m + 1e-9)));
-}
+int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
 // The highest sample of a cell when enough samples stand near it, else the mean: one
 // stray return does not make a cell tall. Samples near the extreme, estimated from the
@@ -34,6 +32,60 @@ float supported_extreme(float mean, float extreme, float variance, int32_t count
     const double var = std::isfinite(variance) ? variance : 0.0;
     const double near_extreme = count * var / (d * d);
     return near_extreme >= min_support ? extreme : mean;
+}
+
+// How many of v[0, n) are below t (a loop that vectorises).
+std::size_t count_below(const float* __restrict v, std::size_t n, float t)
+{
+    int32_t c = 0;
+    for (std::size_t u = 0; u < n; ++u) c += v[u] < t ? 1 : 0;
+    return static_cast<std::size_t>(c);
+}
+
+// The smallest of v[0, n) at or above t.
+float min_from(const float* __restrict v, std::size_t n, float t)
+{
+    float best = kInf;
+    for (std::size_t u = 0; u < n; ++u) best = std::min(best, v[u] >= t ? v[u] : kInf);
+    return best;
+}
+
+// The value of rank k (from 0) among the finite v[0, n): what std::nth_element would put
+// at k. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
+// found from guess in steps that grow from `step`, then narrowed at the level the counts
+// point to, until it holds one value (or values with no float between them).
+float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step)
+{
+    float lo = -kInf, hi = kInf;
+    std::size_t below_lo = 0, below_hi = n;
+    float t = guess;
+    for (int iter = 0; iter < 64 && below_hi - below_lo > 1; ++iter) {
+        const std::size_t c = count_below(v, n, t);
+        if (c <= k) {
+            lo = t;
+            below_lo = c;
+        } else {
+            hi = t;
+            below_hi = c;
+        }
+        if (std::isfinite(lo) && std::isfinite(hi)) {
+            // Where rank k + 1/2 would lie were the values in the bracket evenly spread,
+            // kept off its ends so that each count narrows it.
+            const float f = (static_cast<float>(k - below_lo) + 0.5f) / static_cast<float>(below_hi - below_lo);
+            t = lo + std::clamp(f, 0.05f, 0.95f) * (hi - lo);
+            if (!(t > lo && t < hi)) t = lo + 0.5f * (hi - lo);
+            if (!(t > lo && t < hi)) break;  // no float between them: one value
+        } else {
+            t = std::isfinite(lo) ? lo + step : hi - step;
+            step *= 2.0f;
+        }
+    }
+    if (below_hi - below_lo > 1 && std::nextafter(lo, kInf) < hi) {  // not narrowed: never seen, kept as a guard
+        std::vector<float> copy(v, v + n);
+        std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
+        return copy[k];
+    }
+    return min_from(v, n, lo);
 }
 
 // out[k] = min (or max) of in over the square window of half-width h around k; cells
@@ -67,16 +119,6 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
             for (std::size_t j = 0; j < w; ++j) o[j] = pick(o[j], t[j]);
         }
     }
-}
-
-// The slope of the least-squares plane z = a + b i + c j from its centred moments (cells
-// as units); NaN when the cells are (nearly) on a line.
-float plane_slope_deg(double cii, double cjj, double cij, double ciz, double cjz, double count, double resolution_m)
-{
-    const double det = cii * cjj - cij * cij;
-    if (det < 1e-6 * count * count) return kNaN;
-    const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
-    return std::atan(static_cast<float>(std::sqrt(gi * gi + gj * gj) / resolution_m)) * static_cast<float>(180.0 / M_PI);
 }
 
 // (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
@@ -122,41 +164,6 @@ float plane_slope_deg(double cii, double cjj, double cij, double ciz, double cjz
     }
 }
 
-// The plane z = a + gp p + gq q through points (offsets p, q; heights z) by least squares;
-// with a previous fit, only the points within `band` of it. Flat (0, 0) with too few points.
-struct PlaneFit
-{
-    float a = 0, gp = 0, gq = 0;
-};
-PlaneFit fit_plane(const std::vector<float>& z, const std::vector<std::array<float, 2>>& pq, const PlaneFit* previous,
-                   float band)
-{
-    double s0 = 0, sp = 0, sq = 0, spp = 0, sqq = 0, spq = 0, sz = 0, spz = 0, sqz = 0;
-    for (std::size_t u = 0; u < z.size(); ++u) {
-        const double p = pq[u][0], q = pq[u][1], v = z[u];
-        if (previous && std::abs(v - (previous->a + previous->gp * p + previous->gq * q)) > band) continue;
-        s0 += 1;
-        sp += p;
-        sq += q;
-        spp += p * p;
-        sqq += q * q;
-        spq += p * q;
-        sz += v;
-        spz += p * v;
-        sqz += q * v;
-    }
-    PlaneFit f;
-    if (s0 < 6) return previous ? *previous : f;
-    const double cpp = spp - sp * sp / s0, cqq = sqq - sq * sq / s0, cpq = spq - sp * sq / s0;
-    const double cpz = spz - sp * sz / s0, cqz = sqz - sq * sz / s0, det = cpp * cqq - cpq * cpq;
-    if (det > 1e-6 * s0 * s0) {
-        f.gp = static_cast<float>((cqq * cpz - cpq * cqz) / det);
-        f.gq = static_cast<float>((cpp * cqz - cpq * cpz) / det);
-    }
-    f.a = static_cast<float>((sz - f.gp * sp - f.gq * sq) / s0);
-    return f;
-}
-
 }  // namespace
 
 void TraversabilityLayers::reset(int nx_, int ny_)
@@ -190,66 +197,110 @@ CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
 
 void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double max_step_m, std::vector<float>& ground)
 {
-    constexpr int kStride = 3;
-    const int nx = g.nx, ny = g.ny, h = half_width(radius_m, g.resolution_m);
-    const int lx = (nx - 1) / kStride + 1, ly = (ny - 1) / kStride + 1;
+    // local_ground_reference, lattice point by lattice point, is the specification. Here the
+    // window's geometry (the moments of its known cells' offsets) comes from sums along the
+    // columns of a lattice row's window rows, then along the window's columns; the heights'
+    // moments from the window's points in a buffer (the same floats as the reference's,
+    // summed in double: integer offsets times floats, exact in any order); the second
+    // plane's by subtracting the points off the first; the percentile by counting.
+    const int nx = g.nx, ny = g.ny, h = ground_half_width(radius_m, g.resolution_m);
+    const int lx = (nx - 1) / kGroundStride + 1, ly = (ny - 1) / kGroundStride + 1;
+    const std::size_t n = g.cells(), w = static_cast<std::size_t>(ny), half = (w + 1) / 2;
     lattice_.assign(static_cast<std::size_t>(lx) * ly, kNaN);
     lattice_slope_.assign(static_cast<std::size_t>(lx) * ly, {0.0f, 0.0f});
-    for (int a = 0; a < lx; ++a)
-        for (int b = 0; b < ly; ++b) {
-            const int i = a * kStride, j = b * kStride;
-            // The known cells of the window (every other row and column) and the plane through
-            // them, fitted twice: the second time without the cells more than max_step/2 off the
-            // first (an obstacle at the window's side would tilt it). Their heights less the
-            // plane's slope are level; a low percentile of them is the ground.
-            window_.clear();
-            offsets_.clear();
-            const float zc = g.mean_z_m[static_cast<std::size_t>(i) * ny + j];
-            const float zref = std::isnan(zc) ? 0.0f : zc;
-            for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); p += 2)
-                for (int q = std::max(0, j - h); q <= std::min(ny - 1, j + h); q += 2) {
-                    const std::size_t m = static_cast<std::size_t>(p) * ny + q;
-                    if (std::isnan(top_[m])) continue;
-                    window_.push_back(g.mean_z_m[m] - zref);
-                    offsets_.push_back({static_cast<float>(p - i), static_cast<float>(q - j)});
-                }
-            if (window_.size() < 3) continue;
-            PlaneFit fit = fit_plane(window_, offsets_, nullptr, 0.0f);
-            fit = fit_plane(window_, offsets_, &fit, static_cast<float>(0.5 * max_step_m));
-            for (std::size_t u = 0; u < window_.size(); ++u)
-                window_[u] += zref - (fit.gp * offsets_[u][0] + fit.gq * offsets_[u][1]);
-            const double gp = fit.gp, gq = fit.gq;
-            const auto mid = window_.begin() + static_cast<std::ptrdiff_t>(2 * window_.size() / 5);
-            std::nth_element(window_.begin(), mid, window_.end());
-            lattice_[static_cast<std::size_t>(a) * ly + b] = *mid;
-            lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {static_cast<float>(gp), static_cast<float>(gq)};
-        }
-    ground.assign(g.cells(), kNaN);
-    for (int i = 0; i < nx; ++i) {
-        const int a = std::min(i / kStride, lx - 1), a1 = std::min(a + 1, lx - 1);
-        const float fa = static_cast<float>(i - a * kStride) / kStride;
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k])) continue;
-            const int b = std::min(j / kStride, ly - 1), b1 = std::min(b + 1, ly - 1);
-            const float fb = static_cast<float>(j - b * kStride) / kStride;
-            // Bilinear over the corners that have a level.
-            // Each corner's level carried to the cell along its plane, blended bilinearly over
-            // the corners that have one.
-            float sum = 0, weight = 0;
-            const int ca[4] = {a, a1, a, a1}, cb[4] = {b, b, b1, b1};
-            const float wc[4] = {(1 - fa) * (1 - fb), fa * (1 - fb), (1 - fa) * fb, fa * fb};
-            for (int u = 0; u < 4; ++u) {
-                const std::size_t l = static_cast<std::size_t>(ca[u]) * ly + cb[u];
-                if (std::isnan(lattice_[l]) || wc[u] <= 0) continue;
-                const float level = lattice_[l] + lattice_slope_[l][0] * static_cast<float>(i - ca[u] * kStride) +
-                                    lattice_slope_[l][1] * static_cast<float>(j - cb[u] * kStride);
-                sum += wc[u] * level;
-                weight += wc[u];
+    // Known cells as 1; the means split by column parity (NaN where unknown) so that a
+    // window's every other column is contiguous.
+    known_d_.resize(n);
+    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half, kNaN);
+    for (std::size_t k = 0; k < n; ++k) known_d_[k] = known_[k] ? 1.0 : 0.0;
+    for (int i = 0; i < nx; ++i)
+        for (std::size_t j = 0; j < w; ++j)
+            if (known_[i * w + j]) parity_means_[((j & 1) * nx + i) * half + j / 2] = g.mean_z_m[i * w + j];
+    const std::size_t max_points = static_cast<std::size_t>(h + 1) * static_cast<std::size_t>(h + 1);
+    win_v_.resize(max_points);
+    win_p_.resize(max_points);
+    win_q_.resize(max_points);
+    column_sums_.resize(3 * w);
+    double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
+    const double band = static_cast<float>(0.5 * max_step_m);
+    for (int a = 0; a < lx; ++a) {
+        const int i = a * kGroundStride, plo = std::max(0, i - h), phi = std::min(nx - 1, i + h);
+        // Down the window's rows (every other), for every column: the sums of 1, p, pp.
+        std::fill(column_sums_.begin(), column_sums_.end(), 0.0);
+        for (int p = plo; p <= phi; p += 2) {
+            const double dp = p - i;
+            const double* __restrict kr = &known_d_[p * w];
+            for (std::size_t q = 0; q < w; ++q) {
+                c1[q] += kr[q];
+                cp[q] += dp * kr[q];
+                cpp[q] += dp * dp * kr[q];
             }
-            if (weight > 1e-3f) ground[k] = sum / weight;
+        }
+        for (int b = 0; b < ly; ++b) {
+            const int j = b * kGroundStride, qlo = std::max(0, j - h), qhi = std::min(ny - 1, j + h);
+            PlaneMoments m;
+            for (int q = qlo; q <= qhi; q += 2) {
+                const double dq = q - j;
+                m.s0 += c1[q];
+                m.sp += cp[q];
+                m.spp += cpp[q];
+                m.sq += dq * c1[q];
+                m.sqq += dq * dq * c1[q];
+                m.spq += dq * cp[q];
+            }
+            if (m.s0 < 3) continue;
+            const float zc = g.mean_z_m[static_cast<std::size_t>(i) * w + j];
+            const float zref = std::isnan(zc) ? 0.0f : zc;
+            // The window's known points, relative to zref.
+            std::size_t count = 0;
+            const int nq = (qhi - qlo) / 2 + 1;
+            for (int p = plo; p <= phi; p += 2) {
+                const float* row = &parity_means_[((qlo & 1) * nx + p) * half + qlo / 2];
+                const float fp = static_cast<float>(p - i);
+                for (int t = 0; t < nq; ++t) {
+                    const float v = row[t] - zref;
+                    win_v_[count] = v;
+                    win_p_[count] = fp;
+                    win_q_[count] = static_cast<float>(qlo + 2 * t - j);
+                    count += std::isnan(v) ? 0 : 1;
+                }
+            }
+            // Two accumulators each (the sums are exact, so their order does not matter).
+            double sz[2] = {0, 0}, spz[2] = {0, 0}, sqz[2] = {0, 0};
+            for (std::size_t u = 0; u < count; ++u) {
+                const double v = win_v_[u];
+                sz[u & 1] += v;
+                spz[u & 1] += win_p_[u] * v;
+                sqz[u & 1] += win_q_[u] * v;
+            }
+            m.sz = sz[0] + sz[1];
+            m.spz = spz[0] + spz[1];
+            m.sqz = sqz[0] + sqz[1];
+            const PlaneFit first = plane_from_moments(m, nullptr);
+            // The second plane: without the points more than band off the first.
+            for (std::size_t u = 0; u < count; ++u) {
+                const double p = win_p_[u], q = win_q_[u], v = win_v_[u];
+                if (!(std::abs(v - (first.a + first.gp * p + first.gq * q)) > band)) continue;
+                m.s0 -= 1;
+                m.sp -= p;
+                m.sq -= q;
+                m.spp -= p * p;
+                m.sqq -= q * q;
+                m.spq -= p * q;
+                m.sz -= v;
+                m.spz -= p * v;
+                m.sqz -= q * v;
+            }
+            const PlaneFit fit = plane_from_moments(m, &first);
+            float* __restrict lv = win_v_.data();
+            const float* __restrict lp = win_p_.data();
+            const float* __restrict lq = win_q_.data();
+            for (std::size_t u = 0; u < count; ++u) lv[u] += zref - (fit.gp * lp[u] + fit.gq * lq[u]);
+            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f);
+            lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
+    interpolate_ground(g, known_, lattice_, lattice_slope_, ground);
 }
 
 void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, TraversabilityLayers& out)
@@ -313,6 +364,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // ground, also where the window is cut by the map's edge or by unknown cells. (Below the
     // median: a wall seen only at its foot, in a line of well-sampled cells at the edge of
     // what is known, would otherwise raise its own ground.)
+    known_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) known_[k] = std::isnan(top_[k]) ? 0 : 1;
     local_ground(g, c.ground_radius_m, c.max_step_m, out.ground_m);
     const std::vector<float>& ground_ = out.ground_m;
     for (std::size_t k = 0; k < n; ++k) {
@@ -398,15 +451,26 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
             add_column_tap(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
                            sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+        // The plane's gradient (cells as units) from the centred moments, and the tangent of
+        // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
+        // and no call, so that it vectorises; the arc tangent follows.
+        tangent_.resize(w);
+        float* __restrict tangent = tangent_.data();
+        for (int j = 0; j < ny; ++j) {
+            const double c0 = s0[j];
+            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
+            const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
+            const double ciz = szp[j] - c0 * mp * mz, cjz = szq[j] - c0 * mq * mz;
+            const double det = cii * cjj - cij * cij;
+            const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
+            const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
+            tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
+        }
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
             if (so[j] > 0.5f) edge_[k] |= kObstacleNear;
-            const double c0 = s0[j];
-            if (c0 < min_cells) continue;  // too few cells for a plane
-            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
-            out.slope_deg[k] = plane_slope_deg(spp[j] - c0 * mp * mp, sqq[j] - c0 * mq * mq, spq[j] - c0 * mp * mq,
-                                               szp[j] - c0 * mp * mz, szq[j] - c0 * mq * mz, c0, g.resolution_m);
+            if (!std::isnan(tangent[j])) out.slope_deg[k] = std::atan(tangent[j]) * static_cast<float>(180.0 / M_PI);
         }
     }
 

@@ -63,10 +63,14 @@ private:
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
     std::vector<float> top_, bottom_, lowest_, highest_, lowest_mean_, tmp_, lattice_;
-    std::vector<std::array<float, 2>> lattice_slope_, offsets_;
-    std::vector<uint8_t> edge_;
-    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_;
+    std::vector<std::array<float, 2>> lattice_slope_;
+    std::vector<uint8_t> edge_, known_;
+    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_;
     std::vector<float> window_;
+    // The local ground's: known flags (double), the means split by column parity, a lattice
+    // row's column sums, a window's known points.
+    std::vector<double> known_d_, column_sums_;
+    std::vector<float> parity_means_, win_v_, win_p_, win_q_;
 };
 
 }  // namespace ugv::traverse
@@ -78,5 +82,12 @@ namespace ugv::traverse {
 // half_width around (i, j), and its steepest angle in degrees; NaN with fewer than half the
 // window's cells or cells on a line. The classifier's separable sums are tested against it.
 double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& counts, int i, int j, int half_width);
+
+// The local ground the classifier uses (docs/traverse.md, section 1, step 4), written plainly:
+// ground := under each cell with known[k] true, the level interpolated from the lattice
+// points' planes and 40th percentiles over the known cells within radius_m. The
+// classifier's is tested against it.
+void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known, double radius_m,
+                            double max_step_m, std::vector<float>& ground);
 
 }  // namespace ugv::traverse

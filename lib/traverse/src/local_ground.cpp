@@ -1,0 +1,56 @@
+#include "local_ground.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace ugv::traverse {
+
+PlaneFit plane_from_moments(const PlaneMoments& m, const PlaneFit* previous)
+{
+    PlaneFit f;
+    if (m.s0 < 6) return previous ? *previous : f;
+    const double s0 = m.s0;
+    const double cpp = m.spp - m.sp * m.sp / s0, cqq = m.sqq - m.sq * m.sq / s0, cpq = m.spq - m.sp * m.sq / s0;
+    const double cpz = m.spz - m.sp * m.sz / s0, cqz = m.sqz - m.sq * m.sz / s0, det = cpp * cqq - cpq * cpq;
+    if (det > 1e-6 * s0 * s0) {
+        f.gp = static_cast<float>((cqq * cpz - cpq * cqz) / det);
+        f.gq = static_cast<float>((cpp * cqz - cpq * cpz) / det);
+    }
+    f.a = static_cast<float>((m.sz - f.gp * m.sp - f.gq * m.sq) / s0);
+    return f;
+}
+
+void interpolate_ground(const TerrainGrid& g, const std::vector<uint8_t>& known, const std::vector<float>& lattice,
+                        const std::vector<std::array<float, 2>>& lattice_slope, std::vector<float>& ground)
+{
+    constexpr int kStride = kGroundStride;
+    const int nx = g.nx, ny = g.ny;
+    const int lx = (nx - 1) / kStride + 1, ly = (ny - 1) / kStride + 1;
+    ground.assign(g.cells(), std::numeric_limits<float>::quiet_NaN());
+    for (int i = 0; i < nx; ++i) {
+        const int a = std::min(i / kStride, lx - 1), a1 = std::min(a + 1, lx - 1);
+        const float fa = static_cast<float>(i - a * kStride) / kStride;
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
+            if (!known[k]) continue;
+            const int b = std::min(j / kStride, ly - 1), b1 = std::min(b + 1, ly - 1);
+            const float fb = static_cast<float>(j - b * kStride) / kStride;
+            // Each corner's level carried to the cell along its plane, blended bilinearly over
+            // the corners that have one.
+            float sum = 0, weight = 0;
+            const int ca[4] = {a, a1, a, a1}, cb[4] = {b, b, b1, b1};
+            const float wc[4] = {(1 - fa) * (1 - fb), fa * (1 - fb), (1 - fa) * fb, fa * fb};
+            for (int u = 0; u < 4; ++u) {
+                const std::size_t l = static_cast<std::size_t>(ca[u]) * ly + cb[u];
+                if (std::isnan(lattice[l]) || wc[u] <= 0) continue;
+                const float level = lattice[l] + lattice_slope[l][0] * static_cast<float>(i - ca[u] * kStride) +
+                                    lattice_slope[l][1] * static_cast<float>(j - cb[u] * kStride);
+                sum += wc[u] * level;
+                weight += wc[u];
+            }
+            if (weight > 1e-3f) ground[k] = sum / weight;
+        }
+    }
+}
+
+}  // namespace ugv::traverse

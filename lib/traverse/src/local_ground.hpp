@@ -1,0 +1,47 @@
+// The pieces of the local ground (docs/traverse.md, section 1, step 4) that the classifier's
+// fast local_ground and local_ground_reference share: the lattice, the plane from its
+// moments, the percentile's rank and the interpolation between lattice points.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "ugv/traverse/terrain_grid.hpp"
+
+namespace ugv::traverse {
+
+constexpr int kGroundStride = 3;  // a lattice point every third cell
+
+// A radius as the half-width of the square window of cells it covers (at least 1).
+inline int ground_half_width(double radius_m, double resolution_m)
+{
+    return std::max(1, static_cast<int>(std::floor(radius_m / resolution_m + 1e-9)));
+}
+
+// The rank of the ground among n levelled heights: the 40th percentile.
+inline std::size_t ground_rank(std::size_t n) { return 2 * n / 5; }
+
+// Sums over a window's points of 1, p, q, pp, qq, pq, z, pz, qz (p, q: offsets in cells).
+struct PlaneMoments
+{
+    double s0 = 0, sp = 0, sq = 0, spp = 0, sqq = 0, spq = 0, sz = 0, spz = 0, sqz = 0;
+};
+
+struct PlaneFit
+{
+    float a = 0, gp = 0, gq = 0;  // z = a + gp p + gq q
+};
+
+// The least-squares plane of the moments; with fewer than 6 points, the previous fit (or
+// flat through 0 without one); level (gp = gq = 0) when the points lie (nearly) on a line.
+PlaneFit plane_from_moments(const PlaneMoments& m, const PlaneFit* previous);
+
+// ground := each known cell's level: each lattice corner's level carried to the cell along
+// its plane, blended bilinearly over the corners that have one; NaN elsewhere.
+void interpolate_ground(const TerrainGrid& g, const std::vector<uint8_t>& known, const std::vector<float>& lattice,
+                        const std::vector<std::array<float, 2>>& lattice_slope, std::vector<float>& ground);
+
+}  // namespace ugv::traverse
