@@ -343,8 +343,11 @@ void DriveEmulator::step_motion(double dt)
     const bool enabled = state_ == State::operation_enabled;
     const bool braking = state_ == State::fault_reaction_active || state_ == State::quick_stop_active;
     const double vmax = std::min<double>(od_.get(0x6081, 0), model_.max_velocity_counts_s);
-    const double accel = std::min<double>(od_.get(0x6083, 0), model_.max_acceleration_counts_s2);
-    const double decel = std::min<double>(od_.get(0x6084, 0), model_.max_acceleration_counts_s2);
+    // A drive without 0x6083/0x6084 ramps at its own limit.
+    const double accel = od_.find(0x6083, 0) ? std::min<double>(od_.get(0x6083, 0), model_.max_acceleration_counts_s2)
+                                             : model_.max_acceleration_counts_s2;
+    const double decel = od_.find(0x6084, 0) ? std::min<double>(od_.get(0x6084, 0), model_.max_acceleration_counts_s2)
+                                             : model_.max_acceleration_counts_s2;
     double desired = 0.0;
     if (enabled && !(controlword_ & c402::cw::halt)) {
         const double e = move_target_ - position_;
