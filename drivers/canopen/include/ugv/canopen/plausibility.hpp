@@ -4,8 +4,9 @@
 // is within one drive period's travel of that frame (2 x the velocity cap x the period,
 // plus a slack) with the same CiA 402 state. Anything else (the first reading, one after a
 // lost or refused frame, a state change) waits for the next frame to confirm it within one
-// period; one never confirmed is dropped and counted. The bound never grows with a gap, so
-// a corrupted reading after a burst of losses is no more likely to pass than any other.
+// period, and the pair must lie within the travel possible since the last reading taken (n
+// periods); one never confirmed is dropped and counted. No reading is taken on its own after
+// a gap, so a corrupted one after a burst of losses needs a second frame corrupted the same.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +29,11 @@ public:
     explicit TpdoPlausibility(double max_step_rad) : max_step_rad_(max_step_rad) {}
 
     // A frame that may have been a position TPDO was lost (a malformed line).
-    void note_lost() { gap_ = true; }
+    void note_lost()
+    {
+        gap_ = true;
+        ++since_taken_;
+    }
     // True when the reading may be used now.
     bool check(const Reading& r);
     void reset();
@@ -42,6 +47,8 @@ private:
     std::optional<Reading> previous_;  // the frame before, taken or held
     bool previous_taken_ = false;
     bool gap_ = false;
+    std::optional<Reading> taken_;  // the last reading taken
+    int since_taken_ = 0;           // frames (and lost lines) since
     uint64_t dropped_ = 0;
 };
 
