@@ -48,7 +48,7 @@ Drive::Drive(DriveConfig config)
       heartbeat_(config.node_id, int64_t{config.heartbeat_period_ms} * 1000),
       enabler_(config.enabler),
       setpoint_(config.setpoint_timeout_us),
-      plausibility_(0.0)
+      plausibility_(0.0, 0.0)
 {
 }
 
@@ -118,7 +118,10 @@ void Drive::queue_probe()
         probe_error_ = "timeout";
         return true;
     };
-    for (uint8_t sub = 1; sub <= 4; ++sub)
+    // The daemon reads only what the plan needs (each transfer is one more chance for a noisy
+    // line to time it out); mapping rights and object limits it learns from the aborts of its
+    // configuration writes. --probe reads them all, and the identity.
+    for (uint8_t sub = 1; sub <= (probe_only_ ? 4 : 0); ++sub)
         sdo_.read({0x1018, sub}, [this, sub, timed_out](const SdoResult& r) {
             if (timed_out({0x1018, sub}, r) || !r.ok) return;
             caps_.identity.present = true;
@@ -140,11 +143,12 @@ void Drive::queue_probe()
     sdo_.read({cia402::kHeartbeatProducerTime, 0}, [this, timed_out](const SdoResult& r) {
         if (!timed_out({cia402::kHeartbeatProducerTime, 0}, r)) caps_.heartbeat_producer = !absent(r);
     });
-    sdo_.read({0x100C, 0}, [this, timed_out](const SdoResult& r) {
-        if (!timed_out({0x100C, 0}, r)) caps_.node_guarding = !absent(r);
-    });
-    for (auto* list : {&caps_.tpdos, &caps_.rpdos})
-        for (auto& r : *list) probe_pdo(r);
+    if (probe_only_)
+        sdo_.read({0x100C, 0}, [this, timed_out](const SdoResult& r) {
+            if (!timed_out({0x100C, 0}, r)) caps_.node_guarding = !absent(r);
+        });
+    probe_pdo(caps_.tpdos[0]);
+    probe_pdo(caps_.rpdos[0]);
 }
 
 void Drive::probe_pdo(PdoResource& res)
@@ -158,30 +162,51 @@ void Drive::probe_pdo(PdoResource& res)
             probe_error_ = "timeout";
             return;
         }
-        if (!c.ok) return;  // 0x06020000: the drive has no such PDO
+        if (!c.ok) return;  // 0x06020000: the drive has no such PDO (nor, we take it, the next)
         r->present = true;
         r->cob_id = c.value;
+        if (r->number < 4) {
+            auto& list = r->transmit ? caps_.tpdos : caps_.rpdos;
+            probe_pdo(list[static_cast<std::size_t>(r->number)]);
+        }
         if (r->transmit)
-            sdo_.read({comm, 5}, [r](const SdoResult& e) { r->event_timer = e.ok || (!e.timed_out && !absent(e)); });
+            sdo_.read({comm, 5}, [this, r, comm](const SdoResult& e) {
+                if (e.timed_out) {
+                    if (probe_error_.empty()) fail("SDO read " + hex_address({comm, 5}) + " timed out");
+                    probe_error_ = "timeout";
+                    return;
+                }
+                r->event_timer = e.ok || !absent(e);
+            });
         sdo_.read({map, 0}, [this, r, comm, map](const SdoResult& m) {
+            if (m.timed_out) {
+                fail("SDO read " + hex_address({map, 0}) + " timed out");
+                return;
+            }
             if (!m.ok) {
                 r->remappable = false;
                 r->refused_code = m.abort_code;
                 return;
             }
             const uint32_t count = std::min<uint32_t>(m.value & 0xFF, 8);
-            probe_mapping_entry(r, map, count, 1);
+            if (count > 0 || probe_only_) probe_mapping_entry(r, map, count, 1);
+            if (!probe_only_) return;
             // Mapping rights: disable the PDO, write its own count back, restore the COB-ID.
             // Nothing changes on a drive that accepts; a fixed mapping aborts (0x06010002).
             const uint32_t cob = r->cob_id;
             sdo_.write({comm, 1}, cob | 0x80000000u, 4, [this, r, comm, map, cob, count](const SdoResult& d) {
+                if (d.timed_out) {
+                    fail("SDO write " + hex_address({comm, 1}) + " timed out");
+                    return;
+                }
                 if (!d.ok) {
                     r->remappable = false;
                     r->refused_code = d.abort_code;
                     return;
                 }
-                sdo_.write({map, 0}, count, 1, [r](const SdoResult& w) {
-                    if (w.ok) return;
+                sdo_.write({map, 0}, count, 1, [this, r, map](const SdoResult& w) {
+                    if (w.timed_out) fail("SDO write " + hex_address({map, 0}) + " timed out");
+                    if (w.ok || w.timed_out) return;
                     r->remappable = false;
                     r->refused_code = w.abort_code;
                 });
@@ -195,6 +220,10 @@ void Drive::probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, ui
 {
     // The entries in use, then how many sub-indices the mapping has at all (its object limit).
     sdo_.read({map, sub}, [this, r, map, count, sub](const SdoResult& e) {
+        if (e.timed_out) {
+            fail("SDO read " + hex_address({map, sub}) + " timed out");
+            return;
+        }
         if (!e.ok) {
             r->max_objects = sub - 1;
             return;
@@ -202,7 +231,8 @@ void Drive::probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, ui
         if (sub <= count)
             r->default_mapping.push_back({static_cast<uint16_t>(e.value >> 16), static_cast<uint8_t>((e.value >> 8) & 0xFF),
                                           static_cast<uint8_t>(e.value & 0xFF)});
-        if (sub < 8) probe_mapping_entry(r, map, count, static_cast<uint8_t>(sub + 1));
+        // The entries in use; --probe goes on to find how many the PDO has (its object limit).
+        if (sub < (probe_only_ ? 8u : count)) probe_mapping_entry(r, map, count, static_cast<uint8_t>(sub + 1));
     });
 }
 
@@ -215,8 +245,8 @@ void Drive::make_plan()
     plan_ = plan_bring_up(caps_, o);
     counters_.plan = plan_.flags;
     plausibility_dropped_ += plausibility_.dropped();
-    plausibility_ = TpdoPlausibility(
-        2.0 * config_.max_velocity_rad_s * static_cast<double>(drive_period_us()) * 1e-6 + kPositionSlackRad);
+    plausibility_ = TpdoPlausibility(config_.max_velocity_rad_s * static_cast<double>(drive_period_us()) * 1e-6,
+                                     kPositionSlackRad);
     tpdo1_clock_ = io::PeriodicClock(static_cast<double>(drive_period_us()) * 1e-6, 1, tpdo1_clock_.restarts());
 }
 
@@ -634,7 +664,9 @@ void Drive::tick(int64_t now_us)
              " ms (no heartbeat producer: supervised by its TPDO stream)");
         return;
     }
-    if (running && plan_.produce_sync && now_us >= next_sync_us_) {
+    // Up to 1 ms early: the caller's tick (one per period) may come a little early (the
+    // daemon's timers by up to 0.5 ms), and waiting for the next would drop a SYNC period.
+    if (running && plan_.produce_sync && now_us + std::min<int64_t>(1000, drive_period_us() / 4) >= next_sync_us_) {
         io::CanFrame sync;
         sync.id = kSyncId;
         out_.push_back(sync);

@@ -20,7 +20,7 @@ bool TpdoPlausibility::check(const Reading& r)
     // A held frame confirmed by this one: both must also be where the axis can be since the
     // last one taken (the same bit flipped in two frames in a row agrees with itself).
     if (take && !previous_taken && taken_)
-        take = std::fabs(r.angle_rad - taken_->angle_rad) <= max_step_rad_ * static_cast<double>(since_taken_);
+        take = std::fabs(r.angle_rad - taken_->angle_rad) <= travel_rad_ * static_cast<double>(since_taken_) + slack_rad_;
     if (take) {
         previous_taken_ = true;
         taken_ = r;

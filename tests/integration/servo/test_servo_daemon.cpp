@@ -511,7 +511,10 @@ TEST_CASE("ugv-servo reaches Operation Enabled and nods at 100 Hz with every dri
         const auto [lo, hi] = angle_range(nod);
         std::printf("servo shape %-66s %4zu states, %.1f Hz over %.2f s, nod %.1f..%.1f deg\n", shape.name, nod.size(),
                     rate_hz, span_s, lo / kDeg, hi / kDeg);
-        CHECK(rate_hz > 95.0);  // stamped on the drive's 10 ms cadence (event timer or SYNC)
+        // Event timer: stamped on the drive's 10 ms cadence (100.0 Hz). SYNC: one per control
+        // tick of the daemon, stamped on arrival (97-99 Hz measured; a late tick skips one).
+        const bool sync = std::find(shape.sim_args.begin(), shape.sim_args.end(), "--sync-only") != shape.sim_args.end();
+        CHECK(rate_hz > (sync ? 90.0 : 95.0));
         CHECK(rate_hz < 105.0);
         CHECK(hi - lo > 5 * kDeg);  // nodding (1.5 s of a 0-20 deg nod at 40 deg/s)
         for (std::size_t i = 1; i < nod.size(); ++i) REQUIRE(nod[i].seq == nod[i - 1].seq + 1);

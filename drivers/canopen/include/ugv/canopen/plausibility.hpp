@@ -3,10 +3,11 @@
 // once only when the frame just before it was taken and nothing was lost between, and it
 // is within one drive period's travel of that frame (2 x the velocity cap x the period,
 // plus a slack) with the same CiA 402 state. Anything else (the first reading, one after a
-// lost or refused frame, a state change) waits for the next frame to confirm it within one
-// period, and the pair must lie within the travel possible since the last reading taken (n
-// periods); one never confirmed is dropped and counted. No reading is taken on its own after
-// a gap, so a corrupted one after a burst of losses needs a second frame corrupted the same.
+// lost or refused frame, a state change) waits for the next frame to confirm it the same
+// way, and must then also lie within the travel at the cap since the last reading taken
+// (n periods x cap x period + slack: the same bit flipped in two frames in a row agrees with
+// itself); one never confirmed is dropped and counted. The bound to a neighbour never grows
+// with a gap, so a corrupted reading after a burst of losses gets no more room than any.
 #pragma once
 
 #include <cstdint>
@@ -25,8 +26,13 @@ public:
         double angle_rad = 0.0;
     };
 
-    // max_step_rad: how far the axis can move in one drive period (TPDO or SYNC period).
-    explicit TpdoPlausibility(double max_step_rad) : max_step_rad_(max_step_rad) {}
+    // travel_rad: how far the axis can move in one drive period (TPDO or SYNC period) at its
+    // velocity cap; slack_rad: quantisation and overshoot. Neighbouring frames may differ by
+    // twice the travel (a frame that vanished unnoticed between them) plus the slack.
+    TpdoPlausibility(double travel_rad, double slack_rad)
+        : travel_rad_(travel_rad), slack_rad_(slack_rad), max_step_rad_(2.0 * travel_rad + slack_rad)
+    {
+    }
 
     // A frame that may have been a position TPDO was lost (a malformed line).
     void note_lost()
@@ -43,6 +49,8 @@ public:
 private:
     bool agree(const Reading& a, const Reading& b) const;
 
+    double travel_rad_;
+    double slack_rad_;
     double max_step_rad_;
     std::optional<Reading> previous_;  // the frame before, taken or held
     bool previous_taken_ = false;
