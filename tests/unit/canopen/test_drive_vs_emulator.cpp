@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "nod_controller.hpp"
@@ -70,8 +71,12 @@ struct Bench
 TEST_CASE("Session configures the emulated drive and reaches Operation Enabled")
 {
     Bench b;
+    const int64_t t0 = b.now;
     b.drive->start(b.now);
     REQUIRE(b.run_until([&] { return b.drive->operational(); }, 2'000'000));
+    std::printf("emulated drive: Operation Enabled after %.0f ms of bus time, %llu SDO aborts (the probe's)\n",
+                static_cast<double>(b.now - t0) * 1e-3, static_cast<unsigned long long>(b.drive->counters().sdo_aborts));
+    CHECK(b.drive->plan().notes.empty());
     CHECK(b.emulator->state() == canopen::cia402::State::operation_enabled);
     CHECK(b.emulator->nmt_state() == canopen::NmtState::operational);
     // Its dictionary holds the mapping the session wrote.
