@@ -14,6 +14,9 @@ namespace {
 // Room for what the velocity bound does not cover: encoder quantisation, receive-time jitter.
 constexpr double kPositionSlackRad = 0.5 * 3.14159265358979323846 / 180.0;
 constexpr double kVelocitySlackRadS = 0.05;
+// The probe's reads may be repeated at will: two more tries each, so that a noisy line (an
+// slcan reply lost to a bit error) does not fail a start-up that reads ~45 objects.
+constexpr int kProbeExtraRetries = 2;
 
 std::string hex_address(SdoAddress at)
 {
@@ -128,25 +131,25 @@ void Drive::queue_probe()
             uint32_t* field[] = {&caps_.identity.vendor_id, &caps_.identity.product_code, &caps_.identity.revision,
                                  &caps_.identity.serial};
             *field[sub - 1] = r.value;
-        });
+        }, kProbeExtraRetries);
     sdo_.read({cia402::kSupportedModes, 0}, [this, timed_out](const SdoResult& r) {
         if (timed_out({cia402::kSupportedModes, 0}, r)) return;
         if (r.ok) caps_.supported_modes = r.value;
-    });
+    }, kProbeExtraRetries);
     for (uint16_t index : {cia402::kStatusword, cia402::kControlword, cia402::kPositionActual, cia402::kTargetPosition,
                            cia402::kModesOfOperation, cia402::kModesDisplay, cia402::kVelocityActual,
                            cia402::kProfileVelocity, cia402::kProfileAcceleration, cia402::kProfileDeceleration})
         sdo_.read({index, 0}, [this, index, timed_out](const SdoResult& r) {
             if (timed_out({index, 0}, r)) return;
             if (!absent(r)) caps_.objects.insert(index);  // a write-only object aborts, but exists
-        });
+        }, kProbeExtraRetries);
     sdo_.read({cia402::kHeartbeatProducerTime, 0}, [this, timed_out](const SdoResult& r) {
         if (!timed_out({cia402::kHeartbeatProducerTime, 0}, r)) caps_.heartbeat_producer = !absent(r);
-    });
+    }, kProbeExtraRetries);
     if (probe_only_)
         sdo_.read({0x100C, 0}, [this, timed_out](const SdoResult& r) {
             if (!timed_out({0x100C, 0}, r)) caps_.node_guarding = !absent(r);
-        });
+        }, kProbeExtraRetries);
     probe_pdo(caps_.tpdos[0]);
     probe_pdo(caps_.rpdos[0]);
 }
@@ -213,7 +216,7 @@ void Drive::probe_pdo(PdoResource& res)
                 sdo_.write({comm, 1}, cob, 4);
             });
         });
-    });
+    }, kProbeExtraRetries);
 }
 
 void Drive::probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, uint8_t sub)
@@ -233,7 +236,7 @@ void Drive::probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, ui
                                           static_cast<uint8_t>(e.value & 0xFF)});
         // The entries in use; --probe goes on to find how many the PDO has (its object limit).
         if (sub < (probe_only_ ? 8u : count)) probe_mapping_entry(r, map, count, static_cast<uint8_t>(sub + 1));
-    });
+    }, kProbeExtraRetries);
 }
 
 void Drive::make_plan()
