@@ -114,13 +114,7 @@ void Drive::queue_probe()
         t.transmit = false;
         caps_.rpdos.push_back(t);
     }
-    // A timeout ends the probe (the drive is not there); an abort is an answer.
-    auto timed_out = [this](SdoAddress at, const SdoResult& r) {
-        if (!r.timed_out) return false;
-        if (probe_error_.empty()) fail("SDO read " + hex_address(at) + " timed out");
-        probe_error_ = "timeout";
-        return true;
-    };
+    auto timed_out = [this](SdoAddress at, const SdoResult& r) { return probe_timed_out("SDO read ", at, r); };
     // The daemon reads only what the plan needs (each transfer is one more chance for a noisy
     // line to time it out); mapping rights and object limits it learns from the aborts of its
     // configuration writes. --probe reads them all, and the identity.
@@ -154,18 +148,22 @@ void Drive::queue_probe()
     probe_pdo(caps_.rpdos[0]);
 }
 
+bool Drive::probe_timed_out(const char* what, SdoAddress at, const SdoResult& r)
+{
+    // A timeout ends the probe (the drive is not there); an abort is an answer.
+    if (!r.timed_out) return false;
+    if (probe_error_.empty()) fail(what + hex_address(at) + " timed out");
+    probe_error_ = "timeout";
+    return true;
+}
+
 void Drive::probe_pdo(PdoResource& res)
 {
     PdoResource* r = &res;  // caps_ is not resized until the next probe
     const auto comm = static_cast<uint16_t>((r->transmit ? 0x1800 : 0x1400) + r->number - 1);
     const auto map = static_cast<uint16_t>((r->transmit ? 0x1A00 : 0x1600) + r->number - 1);
     sdo_.read({comm, 1}, [this, r, comm, map](const SdoResult& c) {
-        if (c.timed_out) {
-            if (probe_error_.empty()) fail("SDO read " + hex_address({comm, 1}) + " timed out");
-            probe_error_ = "timeout";
-            return;
-        }
-        if (!c.ok) return;  // 0x06020000: the drive has no such PDO (nor, we take it, the next)
+        if (probe_timed_out("SDO read ", {comm, 1}, c) || !c.ok) return;  // 0x06020000: the drive has no such PDO (nor, we take it, the next)
         r->present = true;
         r->cob_id = c.value;
         if (r->number < 4) {
@@ -174,18 +172,10 @@ void Drive::probe_pdo(PdoResource& res)
         }
         if (r->transmit)
             sdo_.read({comm, 5}, [this, r, comm](const SdoResult& e) {
-                if (e.timed_out) {
-                    if (probe_error_.empty()) fail("SDO read " + hex_address({comm, 5}) + " timed out");
-                    probe_error_ = "timeout";
-                    return;
-                }
-                r->event_timer = e.ok || !absent(e);
+                if (!probe_timed_out("SDO read ", {comm, 5}, e)) r->event_timer = e.ok || !absent(e);
             });
         sdo_.read({map, 0}, [this, r, comm, map](const SdoResult& m) {
-            if (m.timed_out) {
-                fail("SDO read " + hex_address({map, 0}) + " timed out");
-                return;
-            }
+            if (probe_timed_out("SDO read ", {map, 0}, m)) return;
             if (!m.ok) {
                 r->remappable = false;
                 r->refused_code = m.abort_code;
@@ -198,18 +188,14 @@ void Drive::probe_pdo(PdoResource& res)
             // Nothing changes on a drive that accepts; a fixed mapping aborts (0x06010002).
             const uint32_t cob = r->cob_id;
             sdo_.write({comm, 1}, cob | 0x80000000u, 4, [this, r, comm, map, cob, count](const SdoResult& d) {
-                if (d.timed_out) {
-                    fail("SDO write " + hex_address({comm, 1}) + " timed out");
-                    return;
-                }
+                if (probe_timed_out("SDO write ", {comm, 1}, d)) return;
                 if (!d.ok) {
                     r->remappable = false;
                     r->refused_code = d.abort_code;
                     return;
                 }
                 sdo_.write({map, 0}, count, 1, [this, r, map](const SdoResult& w) {
-                    if (w.timed_out) fail("SDO write " + hex_address({map, 0}) + " timed out");
-                    if (w.ok || w.timed_out) return;
+                    if (probe_timed_out("SDO write ", {map, 0}, w) || w.ok) return;
                     r->remappable = false;
                     r->refused_code = w.abort_code;
                 });
@@ -223,10 +209,7 @@ void Drive::probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, ui
 {
     // The entries in use, then how many sub-indices the mapping has at all (its object limit).
     sdo_.read({map, sub}, [this, r, map, count, sub](const SdoResult& e) {
-        if (e.timed_out) {
-            fail("SDO read " + hex_address({map, sub}) + " timed out");
-            return;
-        }
+        if (probe_timed_out("SDO read ", {map, sub}, e)) return;
         if (!e.ok) {
             r->max_objects = sub - 1;
             return;

@@ -176,20 +176,14 @@ Plan plan_bring_up(const DriveCapabilities& caps, const PlanOptions& opt)
         return p;
     }
 
-    for (const auto& r : caps.tpdos)
-        if (r.present && !r.remappable) {
-            p.flags.fixed_mapping = true;
-            p.notes.push_back(pdo_name(r) + " mapping is fixed (" +
-                              (r.refused_code ? describe_abort(r.refused_code) : std::string("read-only")) +
-                              "): the drive's mapping " + list_objects(r.default_mapping));
-        }
-    for (const auto& r : caps.rpdos)
-        if (r.present && !r.remappable) {
-            p.flags.fixed_mapping = true;
-            p.notes.push_back(pdo_name(r) + " mapping is fixed (" +
-                              (r.refused_code ? describe_abort(r.refused_code) : std::string("read-only")) +
-                              "): the drive's mapping " + list_objects(r.default_mapping));
-        }
+    for (const auto* list : {&caps.tpdos, &caps.rpdos})
+        for (const auto& r : *list)
+            if (r.present && !r.remappable) {
+                p.flags.fixed_mapping = true;
+                p.notes.push_back(pdo_name(r) + " mapping is fixed (" +
+                                  (r.refused_code ? describe_abort(r.refused_code) : std::string("read-only")) +
+                                  "): the drive's mapping " + list_objects(r.default_mapping));
+            }
 
     // TPDOs: statusword + position in one (the sample), velocity in another if one is left.
     Picker tp(caps.tpdos, caps);

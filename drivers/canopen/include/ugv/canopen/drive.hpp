@@ -181,6 +181,8 @@ private:
     void event(DriveEvent::Level level, std::string text);
     void queue_probe();
     void probe_pdo(PdoResource& r);
+    // True (and the session failed, once) when a probe transfer timed out.
+    bool probe_timed_out(const char* what, SdoAddress at, const SdoResult& r);
     void probe_mapping_entry(PdoResource* r, uint16_t map, uint32_t count, uint8_t sub);
     void make_plan();
     void queue_configuration();
