@@ -14,8 +14,9 @@ namespace {
 // Room for what the velocity bound does not cover: encoder quantisation, receive-time jitter.
 constexpr double kPositionSlackRad = 0.5 * 3.14159265358979323846 / 180.0;
 constexpr double kVelocitySlackRadS = 0.05;
-// The probe's reads may be repeated at will: two more tries each, so that a noisy line (an
-// slcan reply lost to a bit error) does not fail a start-up that reads ~45 objects.
+// The probe's reads and the configuration's writes may be repeated at will: two more tries
+// each, so that a noisy line (an slcan reply lost to a bit error) does not fail a start-up
+// of ~80 transfers.
 constexpr int kProbeExtraRetries = 2;
 
 std::string hex_address(SdoAddress at)
@@ -258,13 +259,17 @@ void Drive::queue_configuration()
         writes.push_back({{cia402::kProfileDeceleration, 0}, accel, 4});
     }
     for (const auto& w : writes) {
-        sdo_.write(w.at, w.value, w.size, [this, w](const SdoResult& r) {
-            if (!r.ok) on_config_refused(w, r);
-        });
+        // Writing a configuration value again changes nothing: as many tries as the probe's.
+        sdo_.write(
+            w.at, w.value, w.size, [this, w](const SdoResult& r) {
+                if (!r.ok) on_config_refused(w, r);
+            },
+            kProbeExtraRetries);
     }
     // Mode display must confirm profile position before the drive is enabled.
     const uint16_t display = caps_.has(cia402::kModesDisplay) ? cia402::kModesDisplay : cia402::kModesOfOperation;
-    sdo_.read({display, 0}, [this, display](const SdoResult& r) {
+    sdo_.read(
+        {display, 0}, [this, display](const SdoResult& r) {
         if (!r.ok) {
             fail("SDO read " + hex_address({display, 0}) + " " +
                  (r.timed_out ? "timed out" : "aborted: " + describe_abort(r.abort_code)));
@@ -276,7 +281,8 @@ void Drive::queue_configuration()
             return;
         }
         config_done_ = true;
-    });
+        },
+        kProbeExtraRetries);
 }
 
 PdoResource* Drive::resource_of(uint16_t index)

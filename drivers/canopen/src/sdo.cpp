@@ -149,9 +149,9 @@ SdoClient::SdoClient(uint8_t node, int64_t timeout_us, int retries)
 {
 }
 
-void SdoClient::write(SdoAddress at, uint32_t value, int size_bytes, Callback done)
+void SdoClient::write(SdoAddress at, uint32_t value, int size_bytes, Callback done, int extra_retries)
 {
-    queue_.push_back(Transfer{true, at, value, size_bytes, std::move(done), 0, 0});
+    queue_.push_back(Transfer{true, at, value, size_bytes, std::move(done), 0, extra_retries});
 }
 
 void SdoClient::read(SdoAddress at, Callback done, int extra_retries)
