@@ -102,6 +102,22 @@ void bring_up(Drive& d, int64_t& now, int32_t counts)
     d.take_outgoing();
 }
 
+// Brings a session with the plausibility check to Operation Enabled at `counts`: each state
+// of the walk arrives twice (two TPDO periods), as a real drive's does.
+void bring_up_checked(Drive& d, int64_t& now, int32_t counts)
+{
+    d.start(now);
+    answer_configuration(d, now);
+    d.tick(now);
+    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237})
+        for (int k = 0; k < 2; ++k) {
+            d.on_frame(frame(tpdo1(sw, counts)), now, now);
+            d.on_frame(frame("702#05"), now, now);
+            now += 10'000;
+            d.tick(now);
+        }
+}
+
 }  // namespace
 
 TEST_CASE("Drive configures by SDO, starts the node and enables with the target at the actual position")
@@ -315,18 +331,7 @@ TEST_CASE("Drive with the plausibility check drops a TPDO that one bit error mad
     c.check_tpdo_plausibility = true;  // bound per 10 ms: 2 x 3 rad/s x 0.01 s + 0.5 deg = 448 counts
     Drive d(c);
     int64_t now = 0;
-    d.start(now);
-    answer_configuration(d, now);
-    d.tick(now);
-    // Each state of the walk arrives twice (two TPDO periods), as a real drive's does.
-    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237}) {
-        for (int k = 0; k < 2; ++k) {
-            d.on_frame(frame(tpdo1(sw, 1000)), now, now);
-            d.on_frame(frame("702#05"), now, now);
-            now += 10'000;
-            d.tick(now);
-        }
-    }
+    bring_up_checked(d, now, 1000);
     REQUIRE(d.operational());
     CHECK(d.counters().tpdo_implausible == 0);  // each new state waited for its second TPDO
     d.take_samples();
@@ -432,16 +437,7 @@ TEST_CASE("Drive with the plausibility check at BER 1e-2: no corrupt angle in 20
     c.check_tpdo_plausibility = true;
     Drive d(c);
     int64_t now = 0;
-    d.start(now);
-    answer_configuration(d, now);
-    d.tick(now);
-    for (uint16_t sw : std::initializer_list<uint16_t>{0x0250, 0x0231, 0x0233, 0x0237})
-        for (int k = 0; k < 2; ++k) {
-            d.on_frame(frame(tpdo1(sw, 0)), now, now);
-            d.on_frame(frame("702#05"), now, now);
-            now += 10'000;
-            d.tick(now);
-        }
+    bring_up_checked(d, now, 0);
     REQUIRE(d.operational());
     d.take_samples();
     const double bound_rad = 2.0 * c.max_velocity_rad_s * 0.01 + 0.5 * std::numbers::pi / 180.0;
