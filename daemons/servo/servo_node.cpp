@@ -1,6 +1,7 @@
 #include "servo_node.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include <spdlog/spdlog.h>
 
@@ -99,7 +100,9 @@ void ServoNode::reinitialise(const std::string& why)
     d_.notify_status("DEGRADED: " + why);
     was_operational_ = false;
     d_.set_state(daemon::State::degraded, why);
-    log_.log(spdlog::level::warn, "reinit", "re-initialising: " + why, io::monotonic_us());
+    // A missing mandatory object does not go away by retrying: said once, retried quietly.
+    if (!drive_.mandatory_missing() || said_once_.insert(why).second)
+        log_.log(spdlog::level::warn, "reinit", "re-initialising: " + why, io::monotonic_us());
     retry_at_us_ = io::monotonic_us() + backoff_.next();
 }
 
@@ -217,6 +220,10 @@ void ServoNode::publish_samples()
 void ServoNode::log_events()
 {
     for (const auto& e : drive_.take_events()) {
+        // The plan's degradations and a missing mandatory object: one line each, not one per
+        // re-initialisation.
+        const bool once = e.text.rfind("degraded: ", 0) == 0 || (drive_.mandatory_missing() && e.text == drive_.failure());
+        if (once && !said_once_.insert(e.text).second) continue;
         const auto level = e.level == canopen::DriveEvent::Level::error     ? spdlog::level::err
                            : e.level == canopen::DriveEvent::Level::warning ? spdlog::level::warn
                                                                             : spdlog::level::info;
@@ -266,6 +273,35 @@ void ServoNode::shutdown()
     else spdlog::warn("drive did not confirm halt and disable within {:.1f} s", config_.shutdown_timeout_s);
     transport_->close();
     transport_open_ = false;
+}
+
+int probe(const ServoConfig& config)
+{
+    const auto transport = io::make_can_transport(config.transport, config.bitrate);
+    if (!transport->open()) {
+        std::fprintf(stderr, "ugv-servo --probe: %s\n", transport->last_error().c_str());
+        return 1;
+    }
+    canopen::Drive drive(config.drive);
+    drive.start(io::monotonic_us(), /*probe_only=*/true);
+    const int64_t deadline = io::monotonic_us() + 10'000'000;
+    while (drive.phase() == canopen::Drive::Phase::configuring && io::monotonic_us() < deadline) {
+        for (const auto& f : drive.take_outgoing()) transport->send(f);
+        const io::CanReceive r = transport->receive(2);
+        if (r.status == io::CanReceive::Status::frame) drive.on_frame(r.frame, io::monotonic_us(), r.utime);
+        else if (r.status != io::CanReceive::Status::timeout && r.status != io::CanReceive::Status::error) break;
+        drive.tick(io::monotonic_us());
+    }
+    transport->close();
+    if (drive.phase() != canopen::Drive::Phase::probed) {
+        std::fprintf(stderr, "ugv-servo --probe: no drive answered as node %d on %s at %d bit/s (%s)\n",
+                     int{config.drive.node_id}, config.transport.c_str(), config.bitrate,
+                     drive.failure().empty() ? "no answer" : drive.failure().c_str());
+        return 1;
+    }
+    std::printf("node %d on %s at %d bit/s\n%s%s", int{config.drive.node_id}, config.transport.c_str(), config.bitrate,
+                canopen::describe(drive.capabilities()).c_str(), canopen::describe(drive.plan()).c_str());
+    return 0;
 }
 
 int run(daemon::Daemon& d, ServoConfig config)

@@ -15,6 +15,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "nod_controller.hpp"
 #include "servo_config.hpp"
@@ -94,7 +96,12 @@ private:
     int64_t seq_ = 0;
     ServoNodeCounters counters_;
     int rx_errors_in_a_row_ = 0;  // without a frame between: the transport is broken
+    std::set<std::string> said_once_;  // log lines said once per process
 };
+
+// ugv-servo --probe: the drive's identity, PDO resources, what can be mapped and the plan,
+// printed; nothing moves (the drive stays pre-operational). 0, or 1 when no drive answers.
+int probe(const ServoConfig& config);
 
 // The daemon: the drive on the bus until a stop signal, then halt and disable.
 int run(daemon::Daemon& d, ServoConfig config);

@@ -20,7 +20,7 @@ int PdoMapping::payload_bytes() const
     return bits / 8;
 }
 
-std::vector<SdoWrite> pdo_configuration(const PdoMapping& m, uint8_t node)
+std::vector<SdoWrite> pdo_configuration(const PdoMapping& m, uint8_t node, bool write_mapping)
 {
     const uint16_t comm = static_cast<uint16_t>((m.transmit ? 0x1800 : 0x1400) + (m.number - 1));
     const uint16_t map = static_cast<uint16_t>((m.transmit ? 0x1A00 : 0x1600) + (m.number - 1));
@@ -29,10 +29,12 @@ std::vector<SdoWrite> pdo_configuration(const PdoMapping& m, uint8_t node)
     w.push_back({{comm, 1}, cob | kPdoDisabled, 4});
     w.push_back({{comm, 2}, m.transmission_type, 1});
     if (m.transmit && m.event_timer_ms > 0) w.push_back({{comm, 5}, m.event_timer_ms, 2});
-    w.push_back({{map, 0}, 0, 1});
-    for (std::size_t i = 0; i < m.objects.size(); ++i)
-        w.push_back({{map, static_cast<uint8_t>(i + 1)}, m.objects[i].entry(), 4});
-    w.push_back({{map, 0}, static_cast<uint32_t>(m.objects.size()), 1});
+    if (write_mapping) {
+        w.push_back({{map, 0}, 0, 1});
+        for (std::size_t i = 0; i < m.objects.size(); ++i)
+            w.push_back({{map, static_cast<uint8_t>(i + 1)}, m.objects[i].entry(), 4});
+        w.push_back({{map, 0}, static_cast<uint32_t>(m.objects.size()), 1});
+    }
     w.push_back({{comm, 1}, cob, 4});
     return w;
 }

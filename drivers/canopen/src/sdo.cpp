@@ -149,14 +149,14 @@ SdoClient::SdoClient(uint8_t node, int64_t timeout_us, int retries)
 {
 }
 
-void SdoClient::write(SdoAddress at, uint32_t value, int size_bytes, Callback done)
+void SdoClient::write(SdoAddress at, uint32_t value, int size_bytes, Callback done, int extra_retries)
 {
-    queue_.push_back(Transfer{true, at, value, size_bytes, std::move(done), 0});
+    queue_.push_back(Transfer{true, at, value, size_bytes, std::move(done), 0, extra_retries});
 }
 
-void SdoClient::read(SdoAddress at, Callback done)
+void SdoClient::read(SdoAddress at, Callback done, int extra_retries)
 {
-    queue_.push_back(Transfer{false, at, 0, 0, std::move(done), 0});
+    queue_.push_back(Transfer{false, at, 0, 0, std::move(done), 0, extra_retries});
 }
 
 void SdoClient::clear()
@@ -183,7 +183,7 @@ void SdoClient::tick(int64_t now_us, std::vector<io::CanFrame>& out)
 {
     if (running_ && now_us - sent_us_ > timeout_us_) {
         ++timeouts_;
-        if (running_->attempts <= retries_) {
+        if (running_->attempts <= retries_ + running_->extra_retries) {
             send(*running_, now_us, out);
         } else {
             // Tell the server we gave up, so a late reply cannot be taken for the next one.

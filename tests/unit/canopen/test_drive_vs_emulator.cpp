@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "nod_controller.hpp"
@@ -70,8 +71,12 @@ struct Bench
 TEST_CASE("Session configures the emulated drive and reaches Operation Enabled")
 {
     Bench b;
+    const int64_t t0 = b.now;
     b.drive->start(b.now);
     REQUIRE(b.run_until([&] { return b.drive->operational(); }, 2'000'000));
+    std::printf("emulated drive: Operation Enabled after %.0f ms of bus time, %llu SDO aborts (the probe's)\n",
+                static_cast<double>(b.now - t0) * 1e-3, static_cast<unsigned long long>(b.drive->counters().sdo_aborts));
+    CHECK(b.drive->plan().notes.empty());
     CHECK(b.emulator->state() == canopen::cia402::State::operation_enabled);
     CHECK(b.emulator->nmt_state() == canopen::NmtState::operational);
     // Its dictionary holds the mapping the session wrote.
@@ -83,6 +88,47 @@ TEST_CASE("Session configures the emulated drive and reaches Operation Enabled")
     CHECK(b.emulator->target_counts() == 1000);
     CHECK(b.emulator->position_counts() == 1000.0);
     CHECK(b.drive->counters().sdo_timeouts == 0);
+}
+
+TEST_CASE("The session plans for each emulated drive shape, enables it and gets 100 Hz samples of a moving axis")
+{
+    struct Case
+    {
+        const char* name;
+        sim::servo::DriveShape shape;
+        int replans;  // refused writes the lean probe learns from (each PDO of a fixed set in turn)
+    };
+    sim::servo::DriveShape one{};
+    one.tpdos = 1;
+    one.rpdos = 1;
+    sim::servo::DriveShape fixed{};
+    fixed.fixed_mapping = true;
+    sim::servo::DriveShape single{};
+    single.max_mapped = 1;
+    single.rpdos = 1;
+    sim::servo::DriveShape sync{};
+    sync.sync_only = true;
+    sync.heartbeat = false;
+    for (const Case& c : {Case{"one TPDO, one RPDO", one, 0}, Case{"fixed mappings", fixed, 8},
+                          Case{"one object per PDO, one RPDO", single, 5}, Case{"SYNC only, no heartbeat", sync, 0}}) {
+        INFO(c.name);
+        Bench b;
+        b.model.shape = c.shape;
+        b.emulator = std::make_unique<sim::servo::DriveEmulator>(b.model);
+        b.emulator->power_on(b.now);
+        b.drive->start(b.now);
+        REQUIRE(b.run_until([&] { return b.drive->operational(); }, 3'000'000));
+        CHECK(b.drive->counters().replans == static_cast<uint64_t>(c.replans));
+        b.samples.clear();
+        for (int i = 0; i < 1000; ++i) {
+            b.drive->command(10 * kDeg, 1.0);
+            b.step();
+        }
+        CHECK(b.samples.size() >= 99);
+        CHECK(b.samples.size() <= 101);
+        CHECK(b.samples.back().angle_rad == Approx(10 * kDeg).margin(0.2 * kDeg));
+        CHECK(b.drive->counters().sdo_timeouts == 0);
+    }
 }
 
 TEST_CASE("Position samples arrive at 100 Hz with the TPDO event timer, and with SYNC")

@@ -1,5 +1,8 @@
 #include "object_dictionary.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 namespace ugv::sim::servo {
 
 void ObjectDictionary::add(uint16_t index, uint8_t sub, uint32_t value, int size, Access access, bool mappable)
@@ -7,35 +10,55 @@ void ObjectDictionary::add(uint16_t index, uint8_t sub, uint32_t value, int size
     entries_[key(index, sub)] = OdEntry{value, size, access, mappable};
 }
 
-void ObjectDictionary::reset_communication(uint8_t node)
+std::vector<uint32_t> ObjectDictionary::default_mapping(bool transmit, int n)
 {
-    add(0x1000, 0, 0x00020192, 4, Access::ro);  // device type: CiA 402 servo drive
-    add(0x1001, 0, 0, 1, Access::ro);           // error register
-    add(0x1017, 0, 1000, 2, Access::rw);        // heartbeat producer time, ms
-    // Default PDO set (CiA 402 style): TPDO1 statusword, RPDO1 controlword; the others empty.
-    for (uint16_t n = 0; n < 4; ++n) {
-        add(static_cast<uint16_t>(0x1400 + n), 0, 2, 1, Access::ro);
-        add(static_cast<uint16_t>(0x1400 + n), 1, (n == 0 ? 0u : 0x80000000u) | (0x200u + 0x100u * n + node), 4, Access::rw);
-        add(static_cast<uint16_t>(0x1400 + n), 2, 0xFF, 1, Access::rw);
-        add(static_cast<uint16_t>(0x1800 + n), 0, 5, 1, Access::ro);
-        add(static_cast<uint16_t>(0x1800 + n), 1, (n == 0 ? 0u : 0x80000000u) | (0x180u + 0x100u * n + node), 4, Access::rw);
-        add(static_cast<uint16_t>(0x1800 + n), 2, 0xFF, 1, Access::rw);
-        add(static_cast<uint16_t>(0x1800 + n), 5, 0, 2, Access::rw);
-        add(static_cast<uint16_t>(0x1600 + n), 0, n == 0 ? 1u : 0u, 1, Access::rw);
-        add(static_cast<uint16_t>(0x1A00 + n), 0, n == 0 ? 1u : 0u, 1, Access::rw);
-        for (uint8_t s = 1; s <= 8; ++s) {
-            add(static_cast<uint16_t>(0x1600 + n), s, 0, 4, Access::rw);
-            add(static_cast<uint16_t>(0x1A00 + n), s, 0, 4, Access::rw);
-        }
-    }
-    set(0x1600, 1, 0x60400010);
-    set(0x1A00, 1, 0x60410010);
+    // A vendor's predefined set in the CiA 402 manner: statusword with the actual values out,
+    // controlword with the set-point in.
+    static const std::vector<uint32_t> tpdo[4] = {
+        {0x60410010, 0x60640020}, {0x60410010, 0x606C0020}, {0x60640020, 0x606C0020}, {0x603F0010}};
+    static const std::vector<uint32_t> rpdo[4] = {
+        {0x60400010, 0x607A0020}, {0x60400010, 0x60600008}, {0x60810020}, {0x60830020, 0x60840020}};
+    return transmit ? tpdo[n - 1] : rpdo[n - 1];
 }
 
-void ObjectDictionary::reset_defaults(uint8_t node)
+void ObjectDictionary::reset_communication(uint8_t node, const DriveShape& shape)
+{
+    for (auto it = entries_.begin(); it != entries_.end();)
+        it = it->first >> 8 < 0x2000 ? entries_.erase(it) : std::next(it);
+    add(0x1000, 0, 0x00020192, 4, Access::ro);  // device type: CiA 402 servo drive
+    add(0x1001, 0, 0, 1, Access::ro);           // error register
+    if (shape.heartbeat) add(0x1017, 0, 1000, 2, Access::rw);  // heartbeat producer time, ms
+    add(0x1018, 0, 4, 1, Access::ro);           // identity
+    add(0x1018, 1, 0x00000ABC, 4, Access::ro);  // vendor id (not a registered one)
+    add(0x1018, 2, 0x00000402, 4, Access::ro);  // product code
+    add(0x1018, 3, 0x00010000, 4, Access::ro);  // revision
+    add(0x1018, 4, 0x00000001, 4, Access::ro);  // serial number
+    const Access map_access = shape.fixed_mapping ? Access::ro : Access::rw;
+    const int max = std::clamp(shape.max_mapped, 1, 8);
+    for (int kind = 0; kind < 2; ++kind) {
+        const bool transmit = kind == 0;
+        for (int n = 1; n <= (transmit ? shape.tpdos : shape.rpdos); ++n) {
+            const auto comm = static_cast<uint16_t>((transmit ? 0x1800 : 0x1400) + n - 1);
+            const auto map = static_cast<uint16_t>((transmit ? 0x1A00 : 0x1600) + n - 1);
+            const uint32_t cob = (transmit ? 0x180u : 0x200u) + 0x100u * static_cast<uint32_t>(n - 1) + node;
+            add(comm, 0, transmit && !shape.sync_only ? 5 : 2, 1, Access::ro);
+            add(comm, 1, (n == 1 ? 0u : 0x80000000u) | cob, 4, Access::rw);  // PDO1 valid at power-on
+            add(comm, 2, transmit && shape.sync_only ? 1 : 0xFF, 1, Access::rw);
+            if (transmit && !shape.sync_only) add(comm, 5, 0, 2, Access::rw);
+            auto entries = default_mapping(transmit, n);
+            if (static_cast<int>(entries.size()) > max) entries.resize(static_cast<std::size_t>(max));
+            add(map, 0, static_cast<uint32_t>(entries.size()), 1, map_access);
+            for (int s = 1; s <= max; ++s)
+                add(map, static_cast<uint8_t>(s), s <= static_cast<int>(entries.size()) ? entries[static_cast<std::size_t>(s - 1)] : 0,
+                    4, map_access);
+        }
+    }
+}
+
+void ObjectDictionary::reset_defaults(uint8_t node, const DriveShape& shape)
 {
     entries_.clear();
-    reset_communication(node);
+    reset_communication(node, shape);
     add(0x603F, 0, 0, 2, Access::ro, true);           // error code
     add(0x6040, 0, 0, 2, Access::rw, true);           // controlword
     add(0x6041, 0, 0, 2, Access::ro, true);           // statusword
@@ -48,6 +71,7 @@ void ObjectDictionary::reset_defaults(uint8_t node)
     add(0x6083, 0, 100000, 4, Access::rw, true);      // profile acceleration, counts/s^2
     add(0x6084, 0, 100000, 4, Access::rw, true);      // profile deceleration, counts/s^2
     add(0x6502, 0, 0x00000005, 4, Access::ro);        // supported modes: pp and pv
+    for (uint16_t index : shape.removed) entries_.erase(key(index, 0));
 }
 
 OdEntry* ObjectDictionary::find(uint16_t index, uint8_t sub)

@@ -6,10 +6,24 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <vector>
 
 namespace ugv::sim::servo {
 
 enum class Access { ro, rw, wo };
+
+// The PDO resources and communication objects of a drive (drives differ: CiA 301 allows one
+// to 512 PDOs of each kind; we model up to 4).
+struct DriveShape
+{
+    int tpdos = 4;               // TPDOs present (1..4); the others answer 0x06020000
+    int rpdos = 4;               // RPDOs present (1..4)
+    bool fixed_mapping = false;  // mapping objects read-only: writes abort 0x06010002
+    int max_mapped = 8;          // mapping sub-indices per PDO (1..8): beyond, 0x06090011 / 0x06040042
+    bool heartbeat = true;       // 0x1017 exists (else only the boot-up message is sent)
+    bool sync_only = false;      // TPDOs have no event timer (sub 5 absent, type 0xFE/0xFF refused)
+    std::vector<uint16_t> removed;  // CiA 402 objects this drive does not have
+};
 
 struct OdEntry
 {
@@ -23,9 +37,11 @@ class ObjectDictionary
 {
 public:
     // Fills in the drive's defaults (as after power-on).
-    void reset_defaults(uint8_t node);
+    void reset_defaults(uint8_t node, const DriveShape& shape);
     // Restores only the communication area 0x1000-0x1FFF (NMT reset communication).
-    void reset_communication(uint8_t node);
+    void reset_communication(uint8_t node, const DriveShape& shape);
+    // The default mapping of TPDO/RPDO n (1..4), before the shape's object limit.
+    static std::vector<uint32_t> default_mapping(bool transmit, int n);
 
     OdEntry* find(uint16_t index, uint8_t sub);
     const OdEntry* find(uint16_t index, uint8_t sub) const;

@@ -19,7 +19,9 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -79,6 +81,8 @@ int servo_main(int argc, char** argv)
     unsigned refuse_tx_every = 0;
     ugv::sim::servo::SerialLineFaultConfig line_faults;
     line_faults.garbage_bytes = 16;
+    ugv::sim::servo::DriveShape shape;
+    std::vector<std::string> removed;
     app.add_option("--pty", pty_path, "symlink to create for the adapter's serial port")->required();
     app.add_option("--node-id", node, "the drive's CANopen node id")->check(CLI::Range(1, 127))->capture_default_str();
     app.add_option("--initial-deg", initial_deg, "the axis at power-on (deg)")->capture_default_str();
@@ -99,11 +103,35 @@ int servo_main(int argc, char** argv)
     app.add_option("--serial-baud", serial_baud, "the adapter's serial side runs at B: a host at another rate is not "
                                                  "understood and hears noise (0 = any)")
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--tpdos", shape.tpdos, "TPDOs the drive has (the others answer 0x06020000)")
+        ->check(CLI::Range(1, 4))->capture_default_str();
+    app.add_option("--rpdos", shape.rpdos, "RPDOs the drive has")->check(CLI::Range(1, 4))->capture_default_str();
+    app.add_flag("--fixed-mapping", shape.fixed_mapping,
+                 "PDO mappings are read-only (0x06010002): TPDO1 statusword + position, TPDO2 statusword + velocity, "
+                 "TPDO3 position + velocity, TPDO4 error code; RPDO1 controlword + target, RPDO2 controlword + mode, "
+                 "RPDO3 profile velocity, RPDO4 acceleration + deceleration");
+    app.add_option("--max-mapped", shape.max_mapped, "objects a PDO can map (its mapping sub-indices)")
+        ->check(CLI::Range(1, 8))->capture_default_str();
+    app.add_flag("--no-heartbeat", [&](std::int64_t) { shape.heartbeat = false; },
+                 "no heartbeat producer: 0x1017 answers 0x06020000 (the boot-up message is still sent)");
+    app.add_flag("--sync-only", shape.sync_only,
+                 "TPDOs only on SYNC: no event timer (sub 5 absent), transmission types 0xFE/0xFF refused (0x06090030)");
+    app.add_option("--remove-object", removed, "a CiA 402 object the drive lacks, e.g. 0x606C (repeatable)");
     app.footer("Signals: SIGUSR1 raises a fault (EMCY 0x8611 following error). SIGUSR2 drops the node off the bus\n"
                "for --loss-duration s. SIGHUP puts the adapter's controller bus-off (BEL; silent until the host\n"
                "closes and reopens). SIGINT/SIGTERM stop.");
     if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     const auto bus_bitrate_command = ugv::io::slcan::encode_bitrate(bus_bitrate);
+    for (const auto& r : removed) {
+        char* end = nullptr;
+        const unsigned long index = std::strtoul(r.c_str(), &end, 0);
+        if (end == r.c_str() || *end != '\0' || index < 0x6000 || index > 0x67FF) {
+            std::fprintf(stderr, "%s: --remove-object %s: not a CiA 402 object index (0x6000 ... 0x67FF)\n", argv[0],
+                         r.c_str());
+            return 2;
+        }
+        shape.removed.push_back(static_cast<uint16_t>(index));
+    }
     if (pty_path.empty()) {
         std::fprintf(stderr, "%s: --pty: an empty path\n", argv[0]);
         return 2;
@@ -125,6 +153,7 @@ int servo_main(int argc, char** argv)
     ugv::sim::servo::DriveModel model;
     model.node_id = static_cast<uint8_t>(node);
     model.initial_position_counts = initial_deg * M_PI / 180.0 * counts_per_rad;
+    model.shape = shape;
     ugv::sim::servo::DriveEmulator drive(model);
     ugv::sim::servo::SlcanAdapter adapter;
     if (bus_bitrate_command) adapter.set_bus_bitrate_code((*bus_bitrate_command)[1] - '0');

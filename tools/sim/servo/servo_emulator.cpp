@@ -21,7 +21,7 @@ constexpr int64_t kPhysicsStepUs = 1000;  // the position loop runs at 1 kHz
 
 DriveEmulator::DriveEmulator(DriveModel model) : model_(model), node_(model.node_id)
 {
-    od_.reset_defaults(node_);
+    od_.reset_defaults(node_, model_.shape);
     position_ = model.initial_position_counts;
     move_target_ = position_;
 }
@@ -44,10 +44,10 @@ void DriveEmulator::power_on(int64_t now_us)
 void DriveEmulator::reboot(bool communication_only, int64_t now_us)
 {
     if (communication_only) {
-        od_.reset_communication(node_);
+        od_.reset_communication(node_, model_.shape);
     } else {
         const double pos = position_;
-        od_.reset_defaults(node_);
+        od_.reset_defaults(node_, model_.shape);
         position_ = pos;  // the axis does not move because the electronics restarted
         velocity_ = 0.0;
         move_target_ = position_;
@@ -112,6 +112,7 @@ void DriveEmulator::on_frame(const io::CanFrame& f, int64_t now_us)
     }
     if (nmt_ != co::NmtState::operational) return;
     for (int n = 0; n < 4; ++n) {
+        if (!od_.find(static_cast<uint16_t>(0x1400 + n), 1)) continue;
         const uint32_t cob = od_.get(static_cast<uint16_t>(0x1400 + n), 1);
         if ((cob & 0x80000000u) == 0 && (cob & 0x7FF) == f.id && !f.rtr) on_rpdo(n, f);
     }
@@ -131,6 +132,7 @@ uint32_t DriveEmulator::check_write(uint16_t index, uint8_t sub, uint32_t value,
         if ((od_.get(comm, 1) & 0x80000000u) == 0) return co::abort_code::device_state;
         if (sub == 0) {
             if (value > 8) return co::abort_code::value_range;
+            if (!od_.find(index, static_cast<uint8_t>(value))) return co::abort_code::mapping_too_long;
             int bits = 0;
             for (uint8_t s = 1; s <= value; ++s) bits += static_cast<int>(od_.get(index, s) & 0xFF);
             if (bits > 64) return co::abort_code::mapping_too_long;
@@ -142,6 +144,9 @@ uint32_t DriveEmulator::check_write(uint16_t index, uint8_t sub, uint32_t value,
             if (rpdo_map && target->access == Access::ro) return co::abort_code::not_mappable;
         }
     }
+    // A transmission type this PDO cannot do: event-driven without an event timer.
+    if (index >= 0x1800 && index <= 0x1803 && sub == 2 && (value == 0xFE || value == 0xFF) && !od_.find(index, 5))
+        return co::abort_code::value_range;
     if (index == 0x6060 && static_cast<int8_t>(value & 0xFF) != 1 && static_cast<int8_t>(value & 0xFF) != 3)
         return co::abort_code::value_range;
     return 0;
@@ -281,7 +286,7 @@ void DriveEmulator::on_sync()
     if (nmt_ != co::NmtState::operational) return;
     for (int n = 0; n < 4; ++n) {
         const auto comm = static_cast<uint16_t>(0x1800 + n);
-        if (od_.get(comm, 1) & 0x80000000u) continue;
+        if (!od_.find(comm, 1) || (od_.get(comm, 1) & 0x80000000u)) continue;
         const uint32_t type = od_.get(comm, 2);
         if (type == 0 || type > 240) continue;
         if (++sync_count_[n] >= static_cast<int>(type)) {
@@ -338,8 +343,11 @@ void DriveEmulator::step_motion(double dt)
     const bool enabled = state_ == State::operation_enabled;
     const bool braking = state_ == State::fault_reaction_active || state_ == State::quick_stop_active;
     const double vmax = std::min<double>(od_.get(0x6081, 0), model_.max_velocity_counts_s);
-    const double accel = std::min<double>(od_.get(0x6083, 0), model_.max_acceleration_counts_s2);
-    const double decel = std::min<double>(od_.get(0x6084, 0), model_.max_acceleration_counts_s2);
+    // A drive without 0x6083/0x6084 ramps at its own limit.
+    const double accel = od_.find(0x6083, 0) ? std::min<double>(od_.get(0x6083, 0), model_.max_acceleration_counts_s2)
+                                             : model_.max_acceleration_counts_s2;
+    const double decel = od_.find(0x6084, 0) ? std::min<double>(od_.get(0x6084, 0), model_.max_acceleration_counts_s2)
+                                             : model_.max_acceleration_counts_s2;
     double desired = 0.0;
     if (enabled && !(controlword_ & c402::cw::halt)) {
         const double e = move_target_ - position_;
@@ -391,7 +399,7 @@ void DriveEmulator::advance(int64_t now_us)
         if (nmt_ == co::NmtState::operational) {
             for (int n = 0; n < 4; ++n) {
                 const auto comm = static_cast<uint16_t>(0x1800 + n);
-                if (od_.get(comm, 1) & 0x80000000u) continue;
+                if (!od_.find(comm, 1) || (od_.get(comm, 1) & 0x80000000u)) continue;
                 const uint32_t type = od_.get(comm, 2);
                 const int64_t timer_ms = od_.get(comm, 5);
                 if ((type == 0xFE || type == 0xFF) && timer_ms > 0 && now_us_ >= tpdo_next_us_[n]) {

@@ -28,6 +28,7 @@ struct DriveModel
     int64_t self_test_us = 50'000;          // not ready to switch on -> switch on disabled
     int64_t fault_reaction_us = 50'000;     // fault reaction active -> fault
     double target_window_counts = 2.0;      // target reached when this close and (almost) still
+    DriveShape shape;                       // PDO resources, fixed mappings, heartbeat, SYNC only
 };
 
 class DriveEmulator

@@ -45,7 +45,8 @@ struct SdoWrite
 
 // The CiA 301 sequence: disable the PDO (COB-ID bit 31), set the transmission type (and
 // event timer), clear the mapping count, write the entries, set the count, enable.
-std::vector<SdoWrite> pdo_configuration(const PdoMapping& mapping, uint8_t node);
+// write_mapping false: the drive's own (fixed) mapping stays; only the communication part.
+std::vector<SdoWrite> pdo_configuration(const PdoMapping& mapping, uint8_t node, bool write_mapping = true);
 
 // Packs values (one per mapped object, little-endian, in order) into a PDO frame.
 io::CanFrame pack_pdo(const PdoMapping& mapping, uint8_t node, const std::vector<uint32_t>& values);

@@ -90,8 +90,10 @@ public:
 
     SdoClient(uint8_t node, int64_t timeout_us, int retries = 1);
 
-    void write(SdoAddress at, uint32_t value, int size_bytes, Callback done = {});
-    void read(SdoAddress at, Callback done);
+    // extra_retries: more attempts than the client's own for this transfer (one that may be
+    // repeated at will: a read, or writing a configuration value again, over a noisy line).
+    void write(SdoAddress at, uint32_t value, int size_bytes, Callback done = {}, int extra_retries = 0);
+    void read(SdoAddress at, Callback done, int extra_retries = 0);
     // Drops every queued and running transfer without calling back (re-initialisation).
     void clear();
 
@@ -114,6 +116,7 @@ private:
         int size = 0;
         Callback done;
         int attempts = 0;
+        int extra_retries = 0;
     };
     void send(Transfer& t, int64_t now_us, std::vector<io::CanFrame>& out);
     void finish(const SdoResult& result);
