@@ -13,6 +13,7 @@ void PointCloud::clear()
     range.clear();
     variance.clear();
     time_offset.clear();
+    beam.clear();
 }
 
 ScanAssembler::ScanAssembler(AssemblerConfig config)
@@ -97,6 +98,7 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
     out.sensor_origin = laser_origin_body(config_.mount, origin_tilt.value_or(0.0));
 
     for (auto* v : {&out.x, &out.y, &out.z, &out.range, &out.variance, &out.time_offset}) v->reserve(s.n);
+    out.beam.reserve(s.n);
     const Eigen::Vector3d& tl = config_.mount.laser_xyz_m;
     const Eigen::Vector3d& ta = config_.mount.axis_xyz_m;
     const Eigen::Matrix3d& ra = r_axis_;
@@ -129,6 +131,7 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
         out.range.push_back(static_cast<float>(r));
         out.variance.push_back(static_cast<float>(var_r + r * r * var_a));
         out.time_offset.push_back(static_cast<float>(s.beam_offset_s(i)));
+        out.beam.push_back(static_cast<uint32_t>(i));
     }
     st.points = out.size();
     return st;

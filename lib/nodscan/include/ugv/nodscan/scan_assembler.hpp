@@ -59,6 +59,7 @@ struct PointCloud
     int64_t utime = 0;
     Eigen::Vector3d sensor_origin{0.0, 0.0, 0.0};  // laser origin in the body frame at utime
     std::vector<float> x, y, z, range, variance, time_offset;
+    std::vector<uint32_t> beam;  // the scan's beam index of each point
     void clear();
     std::size_t size() const { return x.size(); }
 };
