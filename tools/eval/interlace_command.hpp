@@ -16,8 +16,9 @@ public:
     InterlaceCommand(const InterlaceCommand&) = delete;  // CLI11 holds references to the members
     InterlaceCommand& operator=(const InterlaceCommand&) = delete;
     bool chosen() const { return sub_->parsed(); }
-    // Exit status: 0 when one order fits clearly, 1 when the log cannot tell (no nodding
-    // scans, or the best two orders within --min-margin), 2 when the log cannot be read.
+    // Exit status: 0 when one order fits clearly (or the scans' own timing beats every
+    // interlaced order by --min-margin: not interlaced), 1 when the log cannot tell (no
+    // nodding scans, or the best two orders within --min-margin), 2 when the log cannot be read.
     int run() const;
 
 private:
