@@ -4,21 +4,7 @@
 
 namespace ugv::nodscan_daemon {
 
-nodscan::ScanView to_scan_view(const laser_scan_t& s)
-{
-    nodscan::ScanView v;
-    v.utime = s.utime;
-    v.angle_min = s.angle_min;
-    v.angle_increment = s.angle_increment;
-    v.time_increment = s.time_increment;
-    v.range_max = s.range_max;
-    if (s.nsweeps != 0 && !v.set_sweeps(s.sweep_order.data(), std::min<int>(s.nsweeps, static_cast<int>(s.sweep_order.size())),
-                      s.sweep_period))
-        v.sweeps = 0;  // no valid layout: timing_ok() refuses the scan
-    v.ranges = s.ranges.data();
-    v.n = std::min<std::size_t>(s.ranges.size(), static_cast<std::size_t>(std::max(0, s.nranges)));
-    return v;
-}
+nodscan::ScanView to_scan_view(const laser_scan_t& s) { return nodscan::scan_view_of(s); }
 
 point_cloud_t to_message(const nodscan::PointCloud& cloud, const std::string& sensor_id, int64_t seq)
 {

@@ -52,17 +52,8 @@ int InterlaceCommand::run() const
                 continue;
             }
             if (!sensor_id_.empty() && scan.sensor_id != sensor_id_) continue;
-            nodscan::ScanView v;
-            v.utime = scan.utime;
-            v.angle_min = scan.angle_min;
-            v.angle_increment = scan.angle_increment;
-            v.time_increment = scan.time_increment;
-            v.range_max = scan.range_max;
-            v.ranges = scan.ranges.data();
-            v.n = std::min<std::size_t>(scan.ranges.size(), static_cast<std::size_t>(std::max(0, scan.nranges)));
-            if (scan.nsweeps > 1 &&
-                !v.set_sweeps(scan.sweep_order.data(), std::min<int>(scan.nsweeps, static_cast<int>(scan.sweep_order.size())),
-                              scan.sweep_period)) {
+            const nodscan::ScanView v = nodscan::scan_view_of(scan);
+            if (v.sweeps < 1) {
                 ++malformed;
                 continue;
             }

@@ -163,7 +163,7 @@ void Session::handle_scan(const Telegram& t)
     const int lost = static_cast<int>(std::min<uint64_t>(rejected - std::exchange(rejected_at_last_scan_, rejected), 1000));
     const int64_t arrival = scan_clock_.update(last_byte_utime, lost);
     stats_.clock_restarts = static_cast<int64_t>(scan_clock_.restarts());
-    const ScanStamp stamp = stamp_scan(last_beam_utime(arrival, t.raw.size(), device_baud_), config_.angle_deg,
+    const ScanStamp stamp = stamp_scan(scan_end_utime(arrival, t.raw.size(), device_baud_), config_.angle_deg,
                                        config_.resolution_cdeg, config_.beam_timing, sweep_order_);
     scan_.arrival_utime = last_byte_utime;
     scan_.first_beam_utime = stamp.first_beam_utime;

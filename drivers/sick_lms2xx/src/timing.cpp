@@ -71,7 +71,7 @@ std::string to_string(const SweepOrder& o)
 
 double ScanStamp::beam_offset_s(int i) const { return order.sweep_of_beam(i) * sweep_period_s + i * time_increment_s; }
 
-ScanStamp stamp_scan(int64_t last_beam_utime, int angle_deg, int resolution_cdeg, BeamTiming timing,
+ScanStamp stamp_scan(int64_t end_utime, int angle_deg, int resolution_cdeg, BeamTiming timing,
                      const SweepOrder& order)
 {
     const double turn_s = 1.0 / kMirrorHz;
@@ -90,11 +90,11 @@ ScanStamp stamp_scan(int64_t last_beam_utime, int angle_deg, int resolution_cdeg
         s.sweep_period_s = turn_s;
         s.order = order.sweeps == sweeps ? order : natural_order(resolution_cdeg);
     }
-    s.first_beam_utime = last_beam_utime - static_cast<int64_t>(std::llround(back_s * 1e6));
+    s.first_beam_utime = end_utime - static_cast<int64_t>(std::llround(back_s * 1e6));
     return s;
 }
 
-int64_t last_beam_utime(int64_t arrival_utime, std::size_t telegram_bytes, int baud)
+int64_t scan_end_utime(int64_t arrival_utime, std::size_t telegram_bytes, int baud)
 {
     return arrival_utime - static_cast<int64_t>(std::llround(line_time_s(telegram_bytes, baud) * 1e6));
 }

@@ -104,17 +104,17 @@ TEST_CASE("scan timing per variant", "[sick_lms2xx][timing]")
     CHECK(line_time_s(732, 38400) == Approx(0.190625));
 }
 
-TEST_CASE("the last beam is measured one transmission time before the telegram's last byte", "[sick_lms2xx][timing]")
+TEST_CASE("the last sweep ends one transmission time before the telegram's last byte", "[sick_lms2xx][timing]")
 {
     // 361 values at 500000 baud: 732 bytes take 14.64 ms; at 38400 baud 190.625 ms.
-    CHECK(last_beam_utime(1'700'000'000'000'000, 732, 500000) == 1'700'000'000'000'000 - 14640);
-    CHECK(last_beam_utime(1'000'000, 732, 38400) == 1'000'000 - 190625);
+    CHECK(scan_end_utime(1'700'000'000'000'000, 732, 500000) == 1'700'000'000'000'000 - 14640);
+    CHECK(scan_end_utime(1'000'000, 732, 38400) == 1'000'000 - 190625);
 }
 
 namespace {
 // Microseconds from the scan's start to beam i.
 double offset_us(const ScanStamp& s, int i) { return s.beam_offset_s(i) * 1e6; }
-constexpr int64_t kLast = 1'000'000'000;  // the last measured beam
+constexpr int64_t kLast = 1'000'000'000;  // the end of the last sweep
 }  // namespace
 
 TEST_CASE("beam times at 0.5 deg follow the mirror, both sweep orders", "[sick_lms2xx][timing]")

@@ -6,9 +6,9 @@
 //   beam i = scan start + sweep(i) * 13.33 ms + (i * resolution) * 13.33 ms / 360 deg
 // where sweep(i) is the sweep that measured phase i mod S: `order[k]` is the phase measured
 // by sweep k (a device fact, configured). The device sends a scan once it is complete, so
-// its last measured beam was measured just before the telegram's first byte left:
-//   last beam  = arrival of the telegram's last byte - transmission time
-//   scan start = last beam - (S - 1) * 13.33 ms - field * 13.33 ms / 360 deg
+// its last sweep crossed the far edge of the field just before the telegram's first byte left:
+//   last sweep's end = arrival of the telegram's last byte - transmission time
+//   scan start       = last sweep's end - (S - 1) * 13.33 ms - field * 13.33 ms / 360 deg
 // The linear model (kept for comparison) spreads the beams in angle order over the whole
 // scan period: beam i = last beam - S * 13.33 ms + i * S * 13.33 ms / (N - 1); it is wrong
 // by up to one sweep for a beam of an interlaced scan.
@@ -62,10 +62,10 @@ struct ScanStamp
     // Seconds from first_beam_utime to beam i.
     double beam_offset_s(int i) const;
 };
-// last_beam_utime: the time of the scan's last measured beam (the start of its telegram).
-ScanStamp stamp_scan(int64_t last_beam_utime, int angle_deg, int resolution_cdeg, BeamTiming timing,
+// end_utime: the end of the scan's last sweep (the start of its telegram).
+ScanStamp stamp_scan(int64_t end_utime, int angle_deg, int resolution_cdeg, BeamTiming timing,
                      const SweepOrder& order);
-// The last measured beam of a telegram whose last byte arrived at arrival_utime.
-int64_t last_beam_utime(int64_t arrival_utime, std::size_t telegram_bytes, int baud);
+// The end of the last sweep of a telegram whose last byte arrived at arrival_utime.
+int64_t scan_end_utime(int64_t arrival_utime, std::size_t telegram_bytes, int baud);
 
 }  // namespace ugv::sick_lms2xx

@@ -5,6 +5,7 @@
 // range (NaN, <= 0, beyond range_max) and beams without a tilt angle are dropped and counted.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -53,6 +54,26 @@ struct ScanView
     // Seconds from utime to the last measured beam (0 without beams).
     double span_s() const;
 };
+
+// A view of a laser_scan_t-like message's ranges (valid while the message lives; n bounded
+// by the array). A template, so this library never sees LCM. A sweep layout that is not one
+// (ScanView::set_sweeps) gives sweeps = 0; nsweeps 0 or 1 is no interlacing.
+template <class LaserScan>
+ScanView scan_view_of(const LaserScan& s)
+{
+    ScanView v;
+    v.utime = s.utime;
+    v.angle_min = s.angle_min;
+    v.angle_increment = s.angle_increment;
+    v.time_increment = s.time_increment;
+    v.range_max = s.range_max;
+    const int sweeps = std::min<int>(s.nsweeps, static_cast<int>(s.sweep_order.size()));
+    if (s.nsweeps > 1 && !v.set_sweeps(s.sweep_order.data(), sweeps, s.sweep_period)) v.sweeps = 0;
+    if (s.nsweeps < 0) v.sweeps = 0;
+    v.ranges = s.ranges.data();
+    v.n = std::min<std::size_t>(s.ranges.size(), static_cast<std::size_t>(std::max(0, s.nranges)));
+    return v;
+}
 
 struct PointCloud
 {
