@@ -143,6 +143,8 @@ TEST_CASE("ugv-lms: a bad config value exits 2 with FILE: KEY: why", "[lms][inte
         {"channel = \"lms scan\"\n", "channel"},
         {"publish_raw = \"yes\"\n", "publish_raw"},
         {"no_such_key = 1\n", "no_such_key"},
+        {"sweep_order = \"0123\"\n", "sweep_order"},
+        {"beam_timing = \"mirror\"\n", "beam_timing"},
     };
     for (const auto& [text, key] : cases) {
         const std::string cfg = dir / "bad.toml";
