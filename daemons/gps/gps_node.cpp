@@ -113,22 +113,20 @@ void GpsNode::run()
 {
     auto& counters = daemon_.counters();
     runtime::Backoff backoff;
-    bool first_attempt = true;
+    bool ever_opened = false;
     const auto sink = [this](const novatel::Decoded& m) { on_message(m); };
     while (!daemon_.stop_requested()) {
-        if (!first_attempt) {
-            sleep_unless_stopped(daemon_, backoff.next());
-            if (daemon_.stop_requested()) {
-                break;
-            }
-        }
-        first_attempt = false;
         io::SerialPort port;
         if (!port.open(config_.device, config_.baud)) {
             ++counters["open_failures"];
             daemon_.set_state(daemon::State::degraded, port.last_error());
+            sleep_unless_stopped(daemon_, backoff.next());
             continue;
         }
+        if (ever_opened) {
+            ++counters["reconnects"];
+        }
+        ever_opened = true;
         novatel::SessionConfig sc;
         sc.configure = config_.configure;
         sc.logs = config_.logs;
@@ -140,45 +138,82 @@ void GpsNode::run()
         if (config_.publish_raw) {
             session.set_raw_tap([this](const uint8_t* p, std::size_t n, int64_t t) { publish_raw(p, n, t); });
         }
-        const bool started = session.start(sink);
-        if (session.counters().found_by_probing > 0) {
-            spdlog::warn("{}: receiver answered at {} baud, not at the configured {}; set it back with COM", config_.device,
-                         session.found_at_baud(), config_.com_baud > 0 ? config_.com_baud : config_.baud);
-        }
-        if (!started) {
-            ++counters["configure_failures"];
-            daemon_.set_state(daemon::State::degraded, "configure " + config_.device + ": " + session.error());
-            sessions_ += session.counters();
-            update_counters(nullptr);
-            continue;
-        }
-        spdlog::info("{}: session started ({}, {} baud)", config_.device, config_.configure ? "configured" : "passive",
-                     port.baud());
-        novatel::Session::Status status = novatel::Session::Status::ok;
-        const uint64_t fixes_at_start = fixes_;
-        while (!daemon_.stop_requested()) {
-            status = session.poll(kPollMs, sink);
-            update_counters(&session);
-            if (status != novatel::Session::Status::ok) {
-                break;
-            }
-            // Healthy again only once this session delivered a fix.
-            if (fixes_ > fixes_at_start && daemon_.state() == daemon::State::degraded) {
-                daemon_.set_state(daemon::State::running);
-                backoff.reset();
-            }
-        }
+        serve(port, session, backoff, sink);
         sessions_ += session.counters();
         update_counters(nullptr);
         if (daemon_.stop_requested()) {
             break;
         }
-        if (status == novatel::Session::Status::silent) {
-            ++counters["silences"];
-        }
-        ++counters["reconnects"];
+        // Only a device that is gone gets here: reopen it after the back-off.
         daemon_.set_state(daemon::State::degraded, config_.device + ": " + session.error());
         port.close();
+        sleep_unless_stopped(daemon_, backoff.next());
+    }
+}
+
+bool GpsNode::start_session(io::SerialPort& port, novatel::Session& session, const novatel::Decoder::Sink& sink)
+{
+    const uint64_t probed_before = session.counters().found_by_probing;
+    const bool started = session.start(sink);
+    if (session.counters().found_by_probing > probed_before) {
+        spdlog::warn("{}: receiver answered at {} baud, not at the configured {}; set it back with COM", config_.device,
+                     session.found_at_baud(), config_.com_baud > 0 ? config_.com_baud : config_.baud);
+    }
+    if (!started) {
+        ++daemon_.counters()["configure_failures"];
+        daemon_.set_state(daemon::State::degraded, "configure " + config_.device + ": " + session.error());
+        return false;
+    }
+    spdlog::info("{}: session started ({}, {} baud)", config_.device, config_.configure ? "configured" : "passive",
+                 port.baud());
+    return true;
+}
+
+void GpsNode::serve(io::SerialPort& port, novatel::Session& session, runtime::Backoff& backoff,
+                    const novatel::Decoder::Sink& sink)
+{
+    auto& counters = daemon_.counters();
+    // Configure mode configures again, on this open port, while nothing comes (a receiver
+    // that restarted has forgotten its logs); passive mode only listens.
+    bool configured = start_session(port, session, sink);
+    int64_t configure_at_us = configured ? 0 : io::monotonic_us() + backoff.next();
+    bool silent = false;
+    uint64_t fixes_seen = fixes_;
+    while (!daemon_.stop_requested() && !session.stream_closed()) {
+        if (!configured && io::monotonic_us() >= configure_at_us) {
+            configured = start_session(port, session, sink);
+            if (!configured) {
+                configure_at_us = io::monotonic_us() + backoff.next();
+            }
+            continue;
+        }
+        const novatel::Session::Status status = session.poll(kPollMs, sink);
+        update_counters(&session);
+        if (status == novatel::Session::Status::closed || status == novatel::Session::Status::error) {
+            return;
+        }
+        if (fixes_ != fixes_seen) {
+            fixes_seen = fixes_;
+            // Fixes again: RUNNING (the state follows the fixes' flow from here on).
+            if (silent || daemon_.state() == daemon::State::degraded) {
+                daemon_.set_state(daemon::State::running);
+            }
+            silent = false;
+            backoff.reset();
+        }
+        if (status != novatel::Session::Status::silent) {
+            continue;
+        }
+        if (!silent) {
+            // DEGRADED, counted once per silence; the port stays open and is read on.
+            silent = true;
+            ++counters["silences"];
+            daemon_.set_state(daemon::State::degraded, config_.device + ": " + session.error());
+        }
+        if (config_.configure && configured) {
+            configured = false;
+            configure_at_us = io::monotonic_us() + backoff.next();
+        }
     }
 }
 

@@ -1,7 +1,9 @@
 // The adapter of ugv-gps, on a device thread of its own: open the port, start the session (configure or passive),
-// decode, interpret and publish; on silence, hang-up or a failed configuration report
-// DEGRADED, close, wait (exponential back-off) and start again. Never exits on a device
-// problem; returns when the daemon is asked to stop.
+// decode, interpret and publish. Silence or a failed configuration: DEGRADED, the port
+// stays open and is read on (configure mode configures again on it after a back-off).
+// Only a device that is gone (EIO, hang-up, its node vanished or replaced) is closed and
+// reopened after an exponential back-off. Never exits on a device problem; returns when
+// the daemon is asked to stop.
 #pragma once
 
 #include <atomic>
@@ -9,9 +11,11 @@
 
 #include "gps_config.hpp"
 #include "ugv/daemon/daemon.hpp"
+#include "ugv/io/serial_port.hpp"
 #include "ugv/novatel/decoder.hpp"
 #include "ugv/novatel/interpreter.hpp"
 #include "ugv/novatel/session.hpp"
+#include "ugv/runtime/backoff.hpp"
 
 namespace ugv::gps_daemon {
 
@@ -28,6 +32,10 @@ private:
     bool wanted(novatel::FrameKind kind) const;
     void update_counters(const novatel::Session* session);
     void publish_raw(const uint8_t* data, std::size_t n, int64_t utime);
+    // Runs one open port until the device is gone or the daemon stops.
+    void serve(io::SerialPort& port, novatel::Session& session, runtime::Backoff& backoff,
+               const novatel::Decoder::Sink& sink);
+    bool start_session(io::SerialPort& port, novatel::Session& session, const novatel::Decoder::Sink& sink);
 
     daemon::Daemon& daemon_;
     GpsConfig config_;

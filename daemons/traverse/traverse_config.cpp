@@ -40,6 +40,7 @@ TraverseConfig read_config(runtime::Config& cfg)
     k.max_step_m = cl.get_double("max_step_m", k.max_step_m, 0.01, 5.0);
     k.max_drop_m = cl.get_double("max_drop_m", k.max_drop_m, 0.01, 5.0);
     k.step_radius_m = cl.get_double("step_radius_m", k.step_radius_m, 0.05, 5.0);
+    k.face_mean_step_m = cl.get_double("face_mean_step_m", k.face_mean_step_m, 0.001, 5.0);
     k.max_slope_deg = cl.get_double("max_slope_deg", k.max_slope_deg, 1.0, 89.0);
     k.slope_radius_m = cl.get_double("slope_radius_m", k.slope_radius_m, 0.1, 5.0);
     k.ground_radius_m = cl.get_double("ground_radius_m", k.ground_radius_m, 0.2, 20.0);

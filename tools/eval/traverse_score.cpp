@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include <ugv/candidate_arcs_t.hpp>
 #include <ugv/sim_truth_t.hpp>
+#include <ugv/terrain_map_t.hpp>
 #include <ugv/traversability_map_t.hpp>
 
 #include "ugv/bus/typed.hpp"
@@ -23,6 +25,8 @@ namespace ugv::eval {
 namespace {
 
 constexpr int kMaxCells = 4'000'000;  // as lib/traverse's check_grid
+// A sample within the laser's noise of the obstacle's threshold height counts as one of it.
+constexpr double kSampleTolerance = 1e-5;
 
 bool finite_pose(const pose_t& p)
 {
@@ -139,27 +143,78 @@ bool is_obstacle(TruthClass c) { return c == TruthClass::obstacle || c == TruthC
 
 // The truth of a map cell from the columns under a grid of points at the truth's resolution
 // over it: obstacle if any is, else negative if any is, else traversable (none: no column).
-TruthClass cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i, int j)
+// For telling whether the laser sampled the obstacle (an obstacle is a height against a
+// local ground, so both must have been sampled): a step obstacle needs a sample in the cell
+// at `above` or higher and one within the ground radius at `ground_below` or lower (the lowest
+// of its step columns' local ground + max_step, and that ground + max_step / 2); a slope
+// obstacle needs only a sample in the cell (`above` = -inf); a negative cell needs a sample
+// in it at `below` or lower (the highest of its columns' ground - max_drop) and one around
+// at `ground_above` or higher (that ground - max_drop / 2).
+struct CellTruth
+{
+    TruthClass cls = TruthClass::none;
+    double above = std::numeric_limits<double>::infinity();
+    double ground_below = -std::numeric_limits<double>::infinity();
+    double below = -std::numeric_limits<double>::infinity();
+    double ground_above = std::numeric_limits<double>::infinity();
+};
+
+CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i, int j)
 {
     const double res = map.resolution();
-    const int n = std::max(1, static_cast<int>(std::ceil(res / truth.field().resolution_m - 1e-6)));
+    const simworld::HeightField& f = truth.field();
+    const TruthRules& r = truth.rules();
+    const int n = std::max(1, static_cast<int>(std::ceil(res / f.resolution_m - 1e-6)));
     const Eigen::Vector2d c = map.centre_world(i, j);
-    TruthClass out = TruthClass::none;
+    CellTruth out;
     for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
             const Eigen::Vector2d p = c + map.axis_i() * (res * ((a + 0.5) / n - 0.5)) +
                                       map.axis_j() * (res * ((b + 0.5) / n - 0.5));
-            const TruthClass t = truth.class_at(p.x(), p.y());
-            if (t == TruthClass::obstacle) return t;
-            if (t == TruthClass::negative || (t == TruthClass::traversable && out == TruthClass::none)) out = t;
+            int ci, cj;
+            if (!truth.column_of(p.x(), p.y(), ci, cj)) continue;
+            const TruthClass t = truth.column_class(ci, cj);
+            const double ground = truth.ground_height(ci, cj);
+            if (t == TruthClass::obstacle) {
+                out.cls = t;
+                if (f.at(ci, cj) - ground >= r.max_step_m - kSampleTolerance) {
+                    out.above = std::min(out.above, ground + r.max_step_m);
+                    out.ground_below = std::max(out.ground_below, ground + 0.5 * r.max_step_m);
+                } else {
+                    out.above = -std::numeric_limits<double>::infinity();
+                }
+            } else if (t == TruthClass::negative && out.cls != TruthClass::obstacle) {
+                out.cls = t;
+                out.below = std::max(out.below, ground - r.max_drop_m);
+                out.ground_above = std::min(out.ground_above, ground - 0.5 * r.max_drop_m);
+            } else if (t == TruthClass::traversable && out.cls == TruthClass::none) {
+                out.cls = t;
+            }
         }
     }
     return out;
 }
 
+// The highest and lowest samples of one terrain map's cells (the map a traversability map
+// was computed from), for telling an obstacle the laser sampled from one it saw only the
+// foot of.
+struct SampledExtremes
+{
+    int nx = 0, ny = 0;
+    float origin_x = 0, origin_y = 0;
+    std::vector<float> max_z, min_z;
+};
+
+std::string number(double v)
+{
+    char buf[32] = "null";
+    if (std::isfinite(v)) std::snprintf(buf, sizeof buf, "%.3f", v);
+    return buf;
+}
+
 // A cell the map got wrong, for --misses: where it is and what each side says.
 void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClasses& map, int i, int j, const char* what,
-                TruthClass truth)
+                TruthClass truth, const SampledExtremes* terrain, double sample_threshold_m, bool sampled)
 {
     if (out == nullptr) return;
     const Eigen::Vector2d w = map.centre_world(i, j), b = map.body(w);
@@ -173,18 +228,57 @@ void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClass
     std::fprintf(out,
                  "{\"map_seq\": %lld, \"what\": \"%s\", \"i\": %d, \"j\": %d, \"x\": %.2f, \"y\": %.2f, "
                  "\"body_x\": %.2f, \"body_y\": %.2f, \"truth\": \"%s\", \"map_class\": %d, \"step_m\": %s, "
-                 "\"drop_m\": %s, \"slope_deg\": %s}\n",
+                 "\"drop_m\": %s, \"slope_deg\": %s, \"max_z\": %s, \"min_z\": %s, \"sample_threshold_z\": %s, "
+                 "\"sampled\": %s}\n",
                  static_cast<long long>(m.map_seq), what, i, j, w.x(), w.y(), b.x(), b.y(), names[static_cast<int>(truth)],
-                 map.cls(i, j), layer(m.step_m).c_str(), layer(m.drop_m).c_str(), layer(m.slope_deg).c_str());
+                 map.cls(i, j), layer(m.step_m).c_str(), layer(m.drop_m).c_str(), layer(m.slope_deg).c_str(),
+                 terrain != nullptr ? layer(terrain->max_z).c_str() : "null",
+                 terrain != nullptr ? layer(terrain->min_z).c_str() : "null", number(sample_threshold_m).c_str(),
+                 sampled ? "true" : "false");
 }
 
-void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const PlacedClasses& map, double range_m,
-                 std::FILE* misses, TraverseScore& s)
+// Whether the terrain map holds samples of obstacle cell (i, j) and of the ground it stands
+// above (lies below) within `radius` cells (CellTruth).
+bool sampled_obstacle(const SampledExtremes& t, const CellTruth& c, int i, int j, int radius, int slope_radius,
+                      double slope_span_m)
+{
+    const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(t.ny) + static_cast<std::size_t>(j);
+    const bool positive = c.cls == TruthClass::obstacle;
+    if (positive ? !(t.max_z[k] >= c.above - kSampleTolerance) : !(t.min_z[k] <= c.below + kSampleTolerance)) return false;
+    if (positive && c.above == -std::numeric_limits<double>::infinity()) {
+        float high = -std::numeric_limits<float>::infinity(), low = std::numeric_limits<float>::infinity();
+        for (int a = std::max(0, i - slope_radius); a <= std::min(t.nx - 1, i + slope_radius); ++a) {
+            for (int b = std::max(0, j - slope_radius); b <= std::min(t.ny - 1, j + slope_radius); ++b) {
+                const std::size_t n = static_cast<std::size_t>(a) * static_cast<std::size_t>(t.ny) + static_cast<std::size_t>(b);
+                if (t.max_z[n] > high) high = t.max_z[n];
+                if (t.min_z[n] < low) low = t.min_z[n];
+            }
+        }
+        return high - low >= slope_span_m;
+    }
+    for (int a = std::max(0, i - radius); a <= std::min(t.nx - 1, i + radius); ++a) {
+        for (int b = std::max(0, j - radius); b <= std::min(t.ny - 1, j + radius); ++b) {
+            if ((a - i) * (a - i) + (b - j) * (b - j) > radius * radius) continue;
+            const std::size_t n = static_cast<std::size_t>(a) * static_cast<std::size_t>(t.ny) + static_cast<std::size_t>(b);
+            if (positive ? t.min_z[n] <= c.ground_below : t.max_z[n] >= c.ground_above) return true;
+        }
+    }
+    return false;
+}
+
+void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const PlacedClasses& map,
+                 const SampledExtremes* terrain, double range_m, std::FILE* misses, TraverseScore& s)
 {
     const int nx = map.nx(), ny = map.ny();
     std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-    for (int i = 0; i < nx; ++i)
-        for (int j = 0; j < ny; ++j) t[static_cast<std::size_t>(i * ny + j)] = cell_truth(truth, map, i, j);
+    std::vector<CellTruth> cells(t.size());
+    for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i * ny + j);
+            cells[k] = cell_truth(truth, map, i, j);
+            t[k] = cells[k].cls;
+        }
+    }
     // The one-cell tolerance: the 8-neighbourhood and the cell itself.
     auto near = [&](int i, int j, auto&& pred) {
         for (int a = std::max(0, i - 1); a <= std::min(nx - 1, i + 1); ++a)
@@ -193,6 +287,10 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
         return false;
     };
     auto map_obstacle = [&](int a, int b) { return is_obstacle(map.cls(a, b)); };
+    const TruthRules& rules = truth.rules();
+    const int ground_cells = static_cast<int>(std::floor(rules.ground_radius_m / map.resolution() + 1e-9));
+    const int slope_cells = static_cast<int>(std::ceil(rules.slope_radius_m / map.resolution() - 1e-9));
+    const double slope_span_m = std::tan(rules.max_slope_deg * M_PI / 180.0) * rules.slope_radius_m;
     auto truth_obstacle = [&](int a, int b) { return is_obstacle(t[static_cast<std::size_t>(a * ny + b)]); };
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
@@ -208,15 +306,23 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
                 if (mc == traversability_map_t::CLASS_TRAVERSABLE || near(i, j, truth_obstacle)) continue;
                 if (mc == traversability_map_t::CLASS_OBSTACLE) ++s.false_obstacles;
                 else ++s.false_negative_obstacles;
-                print_miss(misses, m, map, i, j, "false", tc);
+                print_miss(misses, m, map, i, j, "false", tc, terrain, std::numeric_limits<double>::quiet_NaN(), false);
                 continue;
             }
             const bool positive = tc == TruthClass::obstacle;
             ++(positive ? s.obstacle_cells : s.negative_cells);
             if (!known) continue;
             ++(positive ? s.obstacle_seen : s.negative_seen);
-            if (near(i, j, map_obstacle)) ++(positive ? s.obstacle_detected : s.negative_detected);
-            else print_miss(misses, m, map, i, j, "missed", tc);
+            const bool detected = near(i, j, map_obstacle);
+            if (detected) ++(positive ? s.obstacle_detected : s.negative_detected);
+            const std::size_t k = static_cast<std::size_t>(i * ny + j);
+            const double threshold = positive ? cells[k].above : cells[k].below;
+            const bool sampled = terrain != nullptr && sampled_obstacle(*terrain, cells[k], i, j, ground_cells,
+                                                                        slope_cells, slope_span_m);
+            if (!detected) print_miss(misses, m, map, i, j, "missed", tc, terrain, threshold, sampled);
+            if (!sampled) continue;
+            ++s.sampled;
+            s.sampled_detected += detected ? 1 : 0;
         }
     }
 }
@@ -313,6 +419,7 @@ void TraverseScore::add(const TraverseScore& o)
     arcs_truth_blocked += o.arcs_truth_blocked, arcs_agree += o.arcs_agree;
     arcs_truth_blocked_unrestricted += o.arcs_truth_blocked_unrestricted;
     arcs_agree_unrestricted += o.arcs_agree_unrestricted;
+    sampled += o.sampled, sampled_detected += o.sampled_detected;
 }
 
 std::string TraverseScore::json() const
@@ -324,6 +431,8 @@ std::string TraverseScore::json() const
       << ", \"negative_seen\": " << negative_seen << ", \"negative_detected\": " << negative_detected
       << ", \"negative_recall\": " << ratio(negative_detected, negative_seen)
       << ", \"recall\": " << ratio(obstacle_detected + negative_detected, obstacle_seen + negative_seen)
+      << ", \"sampled\": " << sampled << ", \"sampled_detected\": " << sampled_detected
+      << ", \"sampled_recall\": " << ratio(sampled_detected, sampled)
       << ", \"traversable_known\": " << traversable_known << ", \"false_obstacles\": " << false_obstacles
       << ", \"false_negative_obstacles\": " << false_negative_obstacles
       << ", \"false_obstacle_rate\": " << ratio(false_obstacles + false_negative_obstacles, traversable_known)
@@ -346,6 +455,8 @@ TraverseScoreCommand::TraverseScoreCommand(CLI::App& app)
     sub_->add_option("--truth", truth_, "truth height field (ugv-sim world's run/truth.hf)")->required()->check(CLI::ExistingFile);
     sub_->add_option("--channel", channel_, "channel of the traversability maps");
     sub_->add_option("--arcs-channel", arcs_channel_, "channel of the candidate arcs");
+    sub_->add_option("--terrain-channel", terrain_channel_,
+                     "channel of the terrain maps the traversability maps were computed from (for sampled_recall)");
     sub_->add_option("--range-m", range_m_, "score the cells this far ahead of the vehicle (body x from 0)")
         ->check(CLI::Range(0.0, 1000.0));
     sub_->add_option("--rear-x-m", rear_x_m_, "the footprint's rear (body x, m) for judging arcs on the truth")
@@ -398,12 +509,23 @@ int TraverseScoreCommand::run() const
     std::map<int64_t, candidate_arcs_t> arcs;
     long malformed = 0, invalid_maps = 0, invalid_arcs = 0;
     std::vector<sim_truth_t> truth_poses;  // SIM_TRUTH in log order
+    std::map<int64_t, SampledExtremes> terrain;  // by the terrain map's seq
     while (const lcm::LogEvent* ev = log.readNextEvent()) {
         const auto size = static_cast<std::size_t>(ev->datalen);
         if (ev->channel == "SIM_TRUTH" && pose_ != "estimate") {
             sim_truth_t t;
             if (bus::decode_checked(ev->data, size, t) && (truth_poses.empty() || t.utime > truth_poses.back().utime))
                 truth_poses.push_back(std::move(t));
+            continue;
+        }
+        if (ev->channel == terrain_channel_) {
+            terrain_map_t t;
+            if (!bus::decode_checked(ev->data, size, t)) {
+                ++malformed;
+            } else if (t.nx > 0 && t.ny > 0 && static_cast<int64_t>(t.nx) * t.ny == t.ncells &&
+                       t.max_z.size() == static_cast<std::size_t>(t.ncells) && t.min_z.size() == t.max_z.size()) {
+                terrain[t.seq] = {t.nx, t.ny, t.origin_x, t.origin_y, std::move(t.max_z), std::move(t.min_z)};
+            }
             continue;
         }
         if (ev->channel == channel_) {
@@ -459,12 +581,20 @@ int TraverseScoreCommand::run() const
     for (traversability_map_t& m : maps) to_truth(m.pose, m.utime);
     for (auto& [seq, a] : arcs) to_truth(a.pose, a.utime);
     TraverseScore total;
-    long with_arcs = 0;
+    long with_arcs = 0, with_terrain = 0;
     double worst_recall = 2.0, worst_false = -1.0, worst_agreement = 2.0;
     for (const traversability_map_t& m : maps) {
         const PlacedClasses placed(m);
         TraverseScore s;
-        score_cells(truth, m, placed, range_m_, misses.get(), s);
+        // The terrain map it came from, when the log holds it and its grid is the same.
+        const SampledExtremes* source = nullptr;
+        if (const auto t = terrain.find(m.map_seq); t != terrain.end() && t->second.nx == m.nx &&
+                                                   t->second.ny == m.ny && t->second.origin_x == m.origin_x &&
+                                                   t->second.origin_y == m.origin_y) {
+            source = &t->second;
+            ++with_terrain;
+        }
+        score_cells(truth, m, placed, source, range_m_, misses.get(), s);
         const auto it = arcs.find(m.map_seq);
         if (it != arcs.end()) {
             score_arcs(truth, placed, it->second, rear_x_m_, front_x_m_, s);
@@ -487,10 +617,11 @@ int TraverseScoreCommand::run() const
         std::snprintf(buf, sizeof buf, "%.5f", v);
         return std::string(buf);
     };
-    std::printf("{\"summary\": true, \"maps\": %zu, \"maps_with_arcs\": %ld, \"malformed\": %ld, \"invalid_maps\": %ld, "
+    std::printf("{\"summary\": true, \"maps\": %zu, \"maps_with_arcs\": %ld, \"maps_with_terrain\": %ld, "
+                "\"malformed\": %ld, \"invalid_maps\": %ld, "
                 "\"invalid_arcs\": %ld, \"range_m\": %g, %s, \"worst_recall\": %s, \"worst_false_obstacle_rate\": %s, "
                 "\"worst_arc_agreement\": %s}\n",
-                maps.size(), with_arcs, malformed, invalid_maps, invalid_arcs, range_m_, total.json().c_str(),
+                maps.size(), with_arcs, with_terrain, malformed, invalid_maps, invalid_arcs, range_m_, total.json().c_str(),
                 worst(worst_recall, worst_recall <= 1.0).c_str(), worst(worst_false, worst_false >= 0.0).c_str(),
                 worst(worst_agreement, worst_agreement <= 1.0).c_str());
     if (maps.empty()) {

@@ -18,6 +18,10 @@ struct TraverseScore
     long obstacle_cells = 0, obstacle_seen = 0, obstacle_detected = 0;
     long negative_cells = 0, negative_seen = 0, negative_detected = 0;
     long traversable_known = 0, false_obstacles = 0, false_negative_obstacles = 0;
+    // Of the known obstacle cells (both kinds), those where the terrain map the map was
+    // computed from holds a sample of the obstacle itself, not only of the ground at its foot,
+    // and how many of those were detected.
+    long sampled = 0, sampled_detected = 0;
     // Arcs judged on the map, against the truth restricted to what the laser has seen and
     // against every truth column.
     long arcs = 0, arcs_blocked = 0;
@@ -42,7 +46,8 @@ public:
 
 private:
     CLI::App* sub_;
-    std::string log_, truth_, channel_ = "TRAVERSABILITY_MAP", arcs_channel_ = "ARCS", misses_;
+    std::string log_, truth_, channel_ = "TRAVERSABILITY_MAP", arcs_channel_ = "ARCS",
+                terrain_channel_ = "TERRAIN_MAP", misses_;
     double range_m_ = 15.0;
     double rear_x_m_, front_x_m_;  // the footprint's, lengthwise; its width is the arcs' swept width
     TruthRules rules_;

@@ -41,6 +41,8 @@ TruthTerrain::TruthTerrain(std::shared_ptr<const simworld::HeightField> field, c
         if (o.first % 3 == 0 && o.second % 3 == 0) ground_disc_.push_back(o);
     cache_.assign(static_cast<std::size_t>(field_->nx) * static_cast<std::size_t>(field_->ny), 0);
     step_cache_ = cache_;
+    ground_done_ = cache_;
+    ground_cache_.assign(cache_.size(), std::numeric_limits<double>::quiet_NaN());
 }
 
 bool TruthTerrain::column_of(double x_m, double y_m, int& i, int& j) const
@@ -81,55 +83,67 @@ double TruthTerrain::local_ground_at(double x_m, double y_m) const
     return low;
 }
 
+double TruthTerrain::ground_height(int i, int j) const
+{
+    const simworld::HeightField& f = *field_;
+    if (i < 0 || i >= f.nx || j < 0 || j >= f.ny) return std::numeric_limits<double>::quiet_NaN();
+    const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(f.ny) + static_cast<std::size_t>(j);
+    if (ground_done_[k] != 0) return ground_cache_[k];
+    ground_done_[k] = 1;
+    const double z = f.at(i, j);
+    if (!std::isfinite(z)) return ground_cache_[k] = std::numeric_limits<double>::quiet_NaN();
+    // The columns within ground_radius (every third), the plane through them by least
+    // squares, its slope taken out, and the median of what is left (a box or ditch narrower
+    // than the radius is the minority; a slope is its own ground).
+    around_.clear();
+    offsets_.clear();
+    double s0 = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, sz = 0, saz = 0, sbz = 0;
+    for (const auto& [di, dj] : ground_disc_) {
+        const int a = i + di, b = j + dj;
+        if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
+        const double h = f.at(a, b);
+        if (!std::isfinite(h)) continue;
+        const double dz = h - z;
+        around_.push_back(static_cast<float>(dz));
+        offsets_.emplace_back(di, dj);
+        s0 += 1;
+        sa += di;
+        sb += dj;
+        saa += di * di;
+        sbb += dj * dj;
+        sab += di * dj;
+        sz += dz;
+        saz += di * dz;
+        sbz += dj * dz;
+    }
+    double ga = 0, gb = 0;
+    const double caa = saa - sa * sa / std::max(s0, 1.0), cbb = sbb - sb * sb / std::max(s0, 1.0);
+    const double cab = sab - sa * sb / std::max(s0, 1.0), det = caa * cbb - cab * cab;
+    if (s0 >= 6 && det > 1e-9 * s0 * s0) {
+        ga = (cbb * (saz - sa * sz / s0) - cab * (sbz - sb * sz / s0)) / det;
+        gb = (caa * (sbz - sb * sz / s0) - cab * (saz - sa * sz / s0)) / det;
+    }
+    for (std::size_t u = 0; u < around_.size(); ++u)
+        around_[u] -= static_cast<float>(ga * offsets_[u].first + gb * offsets_[u].second);
+    double ground = z;
+    if (!around_.empty()) {
+        const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
+        std::nth_element(around_.begin(), mid, around_.end());
+        ground = z + static_cast<double>(*mid);
+    }
+    return ground_cache_[k] = ground;
+}
+
 TruthClass TruthTerrain::step_class(int i, int j) const
 {
     const simworld::HeightField& f = *field_;
     uint8_t& slot = step_cache_[static_cast<std::size_t>(i) * static_cast<std::size_t>(f.ny) + static_cast<std::size_t>(j)];
     if (slot != 0) return static_cast<TruthClass>(slot - 1);
     TruthClass out = TruthClass::none;
-    const double z = f.at(i, j);
-    if (std::isfinite(z)) {
-        // The local ground: the columns within ground_radius (every third), the plane
-        // through them by least squares, its slope taken out, and the median of what is
-        // left (a box or ditch narrower than the radius is the minority; a slope is its own
-        // ground). The column is an obstacle standing max_step above it, a negative one
+    const double z = f.at(i, j), ground = ground_height(i, j);
+    if (std::isfinite(z) && std::isfinite(ground)) {
+        // The column is an obstacle standing max_step above its local ground, a negative one
         // lying max_drop below.
-        around_.clear();
-        offsets_.clear();
-        double s0 = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, sz = 0, saz = 0, sbz = 0;
-        for (const auto& [di, dj] : ground_disc_) {
-            const int a = i + di, b = j + dj;
-            if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
-            const double h = f.at(a, b);
-            if (!std::isfinite(h)) continue;
-            const double dz = h - z;
-            around_.push_back(static_cast<float>(dz));
-            offsets_.emplace_back(di, dj);
-            s0 += 1;
-            sa += di;
-            sb += dj;
-            saa += di * di;
-            sbb += dj * dj;
-            sab += di * dj;
-            sz += dz;
-            saz += di * dz;
-            sbz += dj * dz;
-        }
-        double ga = 0, gb = 0;
-        const double caa = saa - sa * sa / std::max(s0, 1.0), cbb = sbb - sb * sb / std::max(s0, 1.0);
-        const double cab = sab - sa * sb / std::max(s0, 1.0), det = caa * cbb - cab * cab;
-        if (s0 >= 6 && det > 1e-9 * s0 * s0) {
-            ga = (cbb * (saz - sa * sz / s0) - cab * (sbz - sb * sz / s0)) / det;
-            gb = (caa * (sbz - sb * sz / s0) - cab * (saz - sa * sz / s0)) / det;
-        }
-        for (std::size_t u = 0; u < around_.size(); ++u)
-            around_[u] -= static_cast<float>(ga * offsets_[u].first + gb * offsets_[u].second);
-        double ground = z;
-        if (!around_.empty()) {
-            const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
-            std::nth_element(around_.begin(), mid, around_.end());
-            ground = z + static_cast<double>(*mid);
-        }
         out = TruthClass::traversable;
         if (z - ground >= rules_.max_step_m - kHeightTolerance) out = TruthClass::obstacle;
         else if (ground - z >= rules_.max_drop_m - kHeightTolerance) out = TruthClass::negative;

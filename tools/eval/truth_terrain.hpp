@@ -41,6 +41,9 @@ public:
     // The lowest column within step_radius_m of the column under (x, y): the local ground
     // (NaN outside the field).
     double local_ground_at(double x_m, double y_m) const;
+    // The local ground column (i, j) is judged against (the detrended median within
+    // ground_radius_m); NaN outside the field or where its height is not finite.
+    double ground_height(int i, int j) const;
     // Column indices of world point (x, y); false outside the field.
     bool column_of(double x_m, double y_m, int& i, int& j) const;
 
@@ -60,6 +63,8 @@ private:
     double max_slope_tan_ = 0;
     mutable std::vector<uint8_t> cache_;           // TruthClass + 1, 0 = not computed
     mutable std::vector<uint8_t> step_cache_;      // the same for step_class
+    mutable std::vector<double> ground_cache_;     // ground_height, NaN = not computed (or none)
+    mutable std::vector<uint8_t> ground_done_;
     mutable std::vector<float> around_;
     mutable std::vector<std::pair<int, int>> offsets_;
 };

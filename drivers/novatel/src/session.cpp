@@ -29,6 +29,7 @@ bool Session::read_once(int timeout_ms, const Decoder::Sink& sink, io::ReadResul
 {
     r = stream_.read(buf_.data(), buf_.size(), timeout_ms);
     if (r.status == io::ReadResult::Status::closed || r.status == io::ReadResult::Status::error) {
+        stream_closed_ = true;
         return false;
     }
     if (r.status == io::ReadResult::Status::data) {
@@ -71,6 +72,7 @@ Session::Reply Session::command(const std::string& text, const Decoder::Sink& si
     awaiting_ = true;
     last_reply_.clear();
     if (!stream_.write(reinterpret_cast<const uint8_t*>(text.data()), text.size())) {
+        stream_closed_ = true;
         awaiting_ = false;
         ++counters_.commands_failed;
         return Reply::closed;
@@ -151,7 +153,7 @@ bool Session::start(const Decoder::Sink& sink)
     std::string tried;
     Reply r = find_receiver(sink, tried);
     if (r == Reply::closed) {
-        return fail("device closed during configuration");
+        return fail("device closed during configuration: " + stream_.last_error());
     }
     if (r != Reply::ok) {
         if (r == Reply::error) {
@@ -191,7 +193,7 @@ Session::Status Session::poll(int timeout_ms, const Decoder::Sink& sink)
 {
     io::ReadResult r;
     if (!read_once(timeout_ms, sink, r)) {
-        error_ = r.status == io::ReadResult::Status::closed ? "device closed" : stream_.last_error();
+        error_ = stream_.last_error().empty() ? "device closed" : stream_.last_error();
         return r.status == io::ReadResult::Status::closed ? Status::closed : Status::error;
     }
     if (io::monotonic_us() - last_frame_us_ > config_.silence_timeout_us) {

@@ -7,6 +7,7 @@
 #include <thread>
 #include <utility>
 
+#include "ugv/sick_lms2xx/model.hpp"
 #include "ugv/sick_lms2xx/requests.hpp"
 #include "ugv/sick_lms2xx/timing.hpp"
 
@@ -270,12 +271,22 @@ bool Session::switch_baud(int baud)
 bool Session::configure()
 {
     if (!transact(request_type(), reply_command(cmd::type), config_.attempts, "type")) return false;
-    device_type_ = reply_.empty() ? "" : std::string(reply_.begin(), reply_.end());
+    device_type_.clear();
+    for (const uint8_t c : reply_)
+        if (c >= 0x20 && c < 0x7f) device_type_.push_back(static_cast<char>(c));
+    device_model_ = model_from_type(device_type_).value_or(0);
+    if (device_model_ == 0)
+        set_state(SessionState::configuring,
+                  "type '" + device_type_ + "' is not an LMS 200/211/220/221/291: configured as one");
     if (!transact(request_status(), reply_command(cmd::status), config_.attempts, "status")) return false;
+    software_version_.clear();
+    for (std::size_t i = 0; i < std::min<std::size_t>(7, reply_.size()); ++i)
+        if (reply_[i] > 0x20 && reply_[i] < 0x7f) software_version_.push_back(static_cast<char>(reply_[i]));
     if (!transact(request_read_config(), reply_command(cmd::read_config), config_.attempts, "read configuration"))
         return false;
     if (reply_.size() < kConfigMinBytes) return fail("read configuration: block of " + std::to_string(reply_.size()) + " bytes");
     DeviceConfig dc{reply_};
+    config_block_bytes_ = reply_.size();
     if (!mode_switch(request_installation_mode(config_.password), "installation mode")) return false;
 
     if (!transact(request_variant(config_.angle_deg, config_.resolution_cdeg), reply_command(cmd::variant),
@@ -327,7 +338,8 @@ bool Session::initialise()
     streaming_ = true;
     last_scan_us_ = now_us();
     error_.clear();
-    set_state(SessionState::streaming, device_type_ + " at " + std::to_string(device_baud_) + " baud");
+    set_state(SessionState::streaming, device_type_ + (software_version_.empty() ? "" : " " + software_version_) +
+                                           " at " + std::to_string(device_baud_) + " baud");
     return true;
 }
 
@@ -337,6 +349,7 @@ Session::PumpResult Session::pump(int timeout_ms)
     if (read_some(std::min(timeout_ms, kReadSliceMs)) == io::ReadResult::Status::closed) return PumpResult::closed;
     if (static_cast<double>(now_us() - last_scan_us_) > silence_timeout_s() * 1e6) {
         ++stats_.timeouts;
+        ++stats_.silences;
         error_ = "no scan for " + std::to_string(silence_timeout_s()) + " s";
         return PumpResult::silence;
     }
@@ -360,6 +373,7 @@ void Session::run()
                 continue;
             }
             closed_ = false;
+            ++stats_.reopens;
             decoder_.reset();
         }
         if (!initialise()) {

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <thread>
 #include <unistd.h>
 
@@ -82,6 +83,28 @@ bool SerialPort::open(const std::string& path, int baud)
         return false;
     }
     ioctl(fd_, TCFLSH, TCIOFLUSH);
+    struct stat st{};
+    if (::fstat(fd_, &st) == 0) {
+        rdev_ = st.st_rdev;
+        ino_ = st.st_ino;
+    }
+    next_node_check_us_ = monotonic_us() + std::chrono::microseconds(kNodeCheckPeriod).count();
+    return true;
+}
+
+bool SerialPort::node_present()
+{
+    if (fd_ < 0) return false;
+    struct stat st{};
+    if (::stat(path_.c_str(), &st) != 0) {
+        if (errno != ENOENT && errno != ENOTDIR) return true;  // cannot tell (EACCES...): the fd decides
+        error_ = path_ + ": device node vanished";
+        return false;
+    }
+    if (st.st_rdev != rdev_ || st.st_ino != ino_) {
+        error_ = path_ + ": device node replaced by another device";
+        return false;
+    }
     return true;
 }
 
@@ -108,7 +131,15 @@ ReadResult SerialPort::read(uint8_t* buf, std::size_t cap, int timeout_ms)
     pollfd p{fd_, POLLIN, 0};
     const int rc = ::poll(&p, 1, timeout_ms);
     r.utime = now_utime();
-    if (rc == 0) return r;
+    if (rc == 0) {
+        // Quiet: still the same device? (A replaced node never hangs up the old fd.)
+        const int64_t now = monotonic_us();
+        if (now >= next_node_check_us_) {
+            next_node_check_us_ = now + std::chrono::microseconds(kNodeCheckPeriod).count();
+            if (!node_present()) r.status = ReadResult::Status::closed;
+        }
+        return r;
+    }
     if (rc < 0) {
         if (errno == EINTR) return r;
         fail("poll");

@@ -12,8 +12,9 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Bits of a cell's flags: its top max_step above the local ground, its bottom max_drop below
-// it, an obstacle within the slope window (the plane there says nothing about the slope).
+// Bits of a cell's flags: its top max_step above the local ground (or a vertical face up
+// from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
+// plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
 
 // A radius as the half-width of the square window of cells it covers (at least 1).
@@ -176,6 +177,7 @@ CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
     positive(c.max_step_m, "max_step_m");
     positive(c.max_drop_m, "max_drop_m");
     positive(c.step_radius_m, "step_radius_m");
+    positive(c.face_mean_step_m, "face_mean_step_m");
     positive(c.slope_radius_m, "slope_radius_m");
     positive(c.ground_radius_m, "ground_radius_m");
     positive(c.max_roughness_m, "max_roughness_m");
@@ -287,14 +289,15 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     }
 
     // 2. Steps and drops against the cells within step_radius (the cell itself included):
-    // step = own top - lowest bottom around; drop = highest mean around - own bottom. They
-    // feed the cost only.
+    // step = own top - lowest bottom around; drop = highest mean around - own bottom.
     const int hs = half_width(c.step_radius_m, g.resolution_m);
     tmp_.resize(n);
     for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(bottom_[k]) ? kInf : bottom_[k];
     window_extreme<true>(tmp_, nx, ny, hs, window_, lowest_);
     for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(top_[k]) ? -kInf : g.mean_z_m[k];
     window_extreme<false>(tmp_, nx, ny, hs, window_, highest_);
+    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(top_[k]) ? kInf : g.mean_z_m[k];
+    window_extreme<true>(tmp_, nx, ny, hs, window_, lowest_mean_);
     edge_.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
         if (std::isnan(top_[k])) continue;
@@ -316,6 +319,22 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
         if (top_[k] - ground_[k] >= c.max_step_m) edge_[k] |= kHigh;
         if (ground_[k] - bottom_[k] >= c.max_drop_m) edge_[k] |= kLow;
+    }
+    // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
+    // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
+    // already a negative obstacle. The means must step too: the spread of passes seen with
+    // different pose errors moves a cell's extremes, not its mean.
+    for (int i = 0; i < nx; ++i) {
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
+            if (std::isnan(top_[k]) || out.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_mean_[k] < c.face_mean_step_m)
+                continue;
+            bool drop_beside = false;
+            for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
+                for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
+                    if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
+            if (!drop_beside) edge_[k] |= kHigh;
+        }
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
     // is too: one stray return alone is not.

@@ -132,6 +132,38 @@ void area(std::vector<int8_t>& cls, double x0, double y0, double x1, double y1, 
         for (double y = y0 + 0.1; y < y1; y += kCell) cell(cls, x, y, c);
 }
 
+// The terrain map a traversability map came from (seq 7, its grid): every cell's samples at
+// the ground, those overlapping [x0, x1) x [y0, y1) of `tops` reaching up to ground + h (h < 0:
+// down to it).
+terrain_map_t source_map(double ground, const std::vector<Box>& tops)
+{
+    terrain_map_t t{};
+    t.utime = kUtime;
+    t.seq = 7;
+    t.pose.utime = kUtime;
+    t.pose.orientation[0] = 1.0;
+    t.pose.position[2] = ground;
+    t.resolution = kCell;
+    t.nx = t.ny = kN;
+    t.origin_x = kOriginX;
+    t.origin_y = kOriginY;
+    t.ncells = kN * kN;
+    for (auto* layer : {&t.mean_z, &t.max_z, &t.min_z}) layer->assign(kN * kN, static_cast<float>(ground));
+    t.variance_z.assign(kN * kN, 1e-4f);
+    t.age_s.assign(kN * kN, 0.0f);
+    t.count.assign(kN * kN, 5);
+    for (const Box& b : tops) {
+        for (double x = b.x0 + 0.1; x < b.x1; x += kCell) {
+            for (double y = b.y0 + 0.1; y < b.y1; y += kCell) {
+                const auto k = static_cast<std::size_t>(static_cast<int>(std::floor((x - kOriginX) / kCell)) * kN +
+                                                        static_cast<int>(std::floor((y - kOriginY) / kCell)));
+                (b.h > 0 ? t.max_z : t.min_z)[k] = static_cast<float>(ground + b.h);
+            }
+        }
+    }
+    return t;
+}
+
 struct Run
 {
     int rc = -1;
@@ -165,11 +197,13 @@ struct World
     {
         test::write_file(dir / "truth.hf", simworld::encode_height_field(truth));
     }
-    Run score(const traversability_map_t& m, const candidate_arcs_t* a, std::vector<std::string> extra = {})
+    Run score(const traversability_map_t& m, const candidate_arcs_t* a, std::vector<std::string> extra = {},
+              const terrain_map_t* source = nullptr)
     {
         const std::string log = dir / "t.lcm";
         {
             lcm::LogFile f(log, "w");
+            if (source) test::write_event(f, kUtime, "TERRAIN_MAP", *source);
             test::write_event(f, kUtime, "TRAVERSABILITY_MAP", m);
             if (a) test::write_event(f, kUtime, "ARCS", *a);
         }
@@ -273,6 +307,47 @@ TEST_CASE("ugv-eval traverse: a missed box lowers the recall by its cells, a fal
     const Run near = w.score(trav_map(1.5, cls), nullptr, {"--range-m", "5"});
     CHECK(near.get("obstacle_cells") == 0);
     CHECK(near.get("negative_cells") == 0);
+}
+
+TEST_CASE("ugv-eval traverse: the sampled recall counts only obstacles whose height the laser measured")
+{
+    World w(1.5);
+    std::vector<int8_t> cls = w.perfect;
+    area(cls, 10.0, 2.0, 10.4, 2.4, traversability_map_t::CLASS_TRAVERSABLE);  // box B missed
+    // Box A and the ditch's floor sampled; box B only at its foot (0.1 m of its 0.3 m).
+    const terrain_map_t source = source_map(1.5, {kBoxA, kDitchC, {kBoxB.x0, kBoxB.y0, kBoxB.x1, kBoxB.y1, 0.1}});
+    Run r = w.score(trav_map(1.5, cls), nullptr, {"--misses", w.dir / "misses.jsonl"}, &source);
+    INFO(r.out);
+    REQUIRE(r.rc == 0);
+    CHECK(r.get("maps_with_terrain") == 1);
+    CHECK(r.get("recall") == Approx(50.0 / 54.0).margin(1e-5));
+    CHECK(r.get("sampled") == 50);
+    CHECK(r.get("sampled_detected") == 50);
+    CHECK(r.get("sampled_recall") == 1.0);
+    CHECK(test::read_file(w.dir / "misses.jsonl").find("\"max_z\": 1.600, \"min_z\": 1.500, \"sample_threshold_z\": 1.700, "
+                                                        "\"sampled\": false") != std::string::npos);
+    // Box B seen to its top: sampled, and missed.
+    const terrain_map_t topped = source_map(1.5, {kBoxA, kDitchC, kBoxB});
+    r = w.score(trav_map(1.5, cls), nullptr, {}, &topped);
+    CHECK(r.get("sampled") == 54);
+    CHECK(r.get("sampled_recall") == Approx(50.0 / 54.0).margin(1e-5));
+    // The ditch's floor in the rim's shadow (no sample below the rim): not sampled.
+    const terrain_map_t shadowed = source_map(1.5, {kBoxA, kBoxB});
+    r = w.score(trav_map(1.5, cls), nullptr, {}, &shadowed);
+    CHECK(r.get("sampled") == 29);
+    // A box whose top was sampled but no ground around it was: not sampled.
+    terrain_map_t floating = source_map(1.5, {kBoxA, kDitchC, kBoxB});
+    for (float& z : floating.min_z)
+        if (z >= 1.5f) z = 1.65f;  // every sample above the ground but the ditch's floor
+    r = w.score(trav_map(1.5, cls), nullptr, {}, &floating);
+    CHECK(r.get("sampled") == 25);  // the ditch only
+    // A terrain map of another grid is not paired: nothing sampled.
+    terrain_map_t other = source_map(1.5, {kBoxA});
+    other.origin_x += kCell;
+    r = w.score(trav_map(1.5, cls), nullptr, {}, &other);
+    CHECK(r.get("maps_with_terrain") == 0);
+    CHECK(r.get("sampled") == 0);
+    CHECK(std::isnan(r.get("sampled_recall")));
 }
 
 TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unrestricted")

@@ -304,6 +304,7 @@ TEST_CASE("ugv-imu through garbage and a hung unit: nothing bad published, back 
     CHECK(listen.counter("bytes_skipped") > 0);
     REQUIRE(listen.until([&] { return listen.got().status.state == ugv::daemon_status_t::STATE_RUNNING; }, 20.0));
     CHECK(listen.counter("silences") >= 1);
+    CHECK(listen.counter("reconnects") == 0);  // silence never reopens the port
     REQUIRE(listen.got().imu.size() > 50);
     // Every published attitude is the emulator's: garbage never became a sample.
     for (const auto& m : listen.got().imu) {

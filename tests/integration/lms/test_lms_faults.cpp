@@ -144,5 +144,8 @@ TEST_CASE("ugv-lms: a hung device (silent 2 s, port open) -> DEGRADED, counted, 
     const std::size_t before = rig.l.scans.size();
     REQUIRE(rig.l.until([&] { return rig.l.scans.size() >= before + 20 && rig.state_is(kRunning); }, 15.0));
     CHECK(rig.check_every_scan_intact() == 0);
+    // Silence is not a disconnection: re-initialised on the open port, never reopened.
+    CHECK(rig.l.counter("silences") >= 1);
+    CHECK(rig.l.counter("reopens") == 0);
     rig.stop_cleanly();
 }

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <unistd.h>
 
 #include "ugv/io/clock.hpp"
@@ -115,6 +116,67 @@ TEST_CASE("SerialPort reports an unplugged device as closed and reopens when it 
     r = port.read(buf, sizeof buf, 1000);
     REQUIRE(r.status == ReadResult::Status::data);
     CHECK(std::string(reinterpret_cast<char*>(buf), r.n) == "ok");
+}
+
+TEST_CASE("SerialPort: a quiet device is not gone, however long it is quiet")
+{
+    ugv::test::TempDir dir;
+    Pty pty(dir / "gps");
+    SerialPort port;
+    REQUIRE(port.open(pty.path(), 9600));
+    uint8_t buf[8];
+    // Three node checks' worth of silence: every read a timeout, none `closed`.
+    const int64_t end = ugv::io::monotonic_us() + 3 * std::chrono::microseconds(SerialPort::kNodeCheckPeriod).count();
+    int reads = 0;
+    while (ugv::io::monotonic_us() < end) {
+        const ReadResult r = port.read(buf, sizeof buf, 50);
+        REQUIRE(r.status == ReadResult::Status::timeout);
+        ++reads;
+    }
+    CHECK(reads >= 10);
+    CHECK(port.node_present());
+    REQUIRE(::write(pty.master_fd(), "ok", 2) == 2);
+    const ReadResult r = port.read(buf, sizeof buf, 1000);
+    REQUIRE(r.status == ReadResult::Status::data);
+    CHECK(std::string(reinterpret_cast<char*>(buf), r.n) == "ok");
+}
+
+TEST_CASE("SerialPort: a node that vanished or now names another device is gone, though the fd never hung up")
+{
+    ugv::test::TempDir dir;
+    const std::string link = dir / "gps";
+    auto old_pty = std::make_unique<Pty>(link);
+    SerialPort port;
+    REQUIRE(port.open(link, 9600));
+    CHECK(port.node_present());
+    uint8_t buf[8];
+    const auto read_until_closed = [&] {
+        ReadResult r;
+        for (int k = 0; k < 40 && r.status != ReadResult::Status::closed; ++k) r = port.read(buf, sizeof buf, 50);
+        return r.status;
+    };
+
+    SECTION("replaced: the link now points at another pty; the old one stays open and silent")
+    {
+        Pty new_pty(link);
+        CHECK_FALSE(port.node_present());
+        CHECK(port.last_error() == link + ": device node replaced by another device");
+        CHECK(read_until_closed() == ReadResult::Status::closed);
+        REQUIRE(port.reopen());
+        REQUIRE(::write(new_pty.master_fd(), "new", 3) == 3);
+        const ReadResult r = port.read(buf, sizeof buf, 1000);
+        REQUIRE(r.status == ReadResult::Status::data);
+        CHECK(std::string(reinterpret_cast<char*>(buf), r.n) == "new");
+        CHECK(port.node_present());
+    }
+    SECTION("vanished: the link removed; the old pty stays open and silent")
+    {
+        REQUIRE(::unlink(link.c_str()) == 0);
+        CHECK_FALSE(port.node_present());
+        CHECK(port.last_error() == link + ": device node vanished");
+        CHECK(read_until_closed() == ReadResult::Status::closed);
+        CHECK_FALSE(port.reopen());
+    }
 }
 
 TEST_CASE("SerialPort refuses what is not a serial port, in one line naming the path")

@@ -12,9 +12,10 @@ using namespace ugv::traverse::test;
 
 namespace {
 
-TraversabilityLayers classify(const TerrainGrid& g, const Odometer& odo = Odometer{})
+TraversabilityLayers classify(const TerrainGrid& g, const Odometer& odo = Odometer{},
+                              const ClassifierConfig& config = ClassifierConfig{})
 {
-    CellClassifier c{ClassifierConfig{}};
+    CellClassifier c{config};
     TraversabilityLayers out;
     c.classify(g, odo, out);
     return out;
@@ -148,6 +149,36 @@ TEST_CASE("a ditch is a negative obstacle")
     CHECK(count_class(l, CellClass::obstacle) == 0);
 }
 
+TEST_CASE("a vertical face is an obstacle where the local ground does not show it")
+{
+    // A 5 degree ramp 3 m wide, rising 0.35 m over 4 m along the path: its sides are
+    // vertical faces as tall as the ramp. Where a side stands 0.25 m or more, its cells are
+    // obstacles; where it is under 0.2 m, traversable; the ramp's top surface is too.
+    TerrainGrid g = empty_grid(80, 80);
+    auto ramp = [](double x, double y) { return x >= 8.0 && x < 12.0 && y >= -1.5 && y < 1.5 ? 0.35 * (x - 8.0) / 4.0 : 0.0; };
+    fill(g, [&](double x, double y) { return kGround + ramp(x, y); });
+    const TraversabilityLayers l = classify(g);
+    for (double x : {11.1, 11.5})
+        for (double y : {1.4, -1.4}) CHECK(l.cell_class[at(g, x, y)] == CellClass::obstacle);
+    for (double y : {1.3, 0.1, -1.3}) CHECK(l.cell_class[at(g, 9.1, y)] == CellClass::traversable);
+    for (double x : {9.5, 10.5, 11.1}) CHECK(l.cell_class[at(g, x, 0.1)] == CellClass::traversable);
+    CHECK(l.cell_class[at(g, 11.1, 1.7)] == CellClass::traversable);  // the ground beside the face
+    // The rule's second half: a step between extremes alone, the means level (the spread of
+    // passes seen with different pose errors), is not a face.
+    TerrainGrid spread = empty_grid(40, 40);
+    fill(spread, [](double, double) { return kGround; });
+    const std::size_t k = at(spread, 4.1, 0.1);
+    set_samples(spread, static_cast<int>(k / spread.ny), static_cast<int>(k % spread.ny),
+                {kGround - 0.06, kGround - 0.03, kGround, kGround, kGround + 0.03, kGround + 0.06, kGround + 0.1,
+                 kGround + 0.12, kGround + 0.14, kGround + 0.16, kGround - 0.02, kGround - 0.04});
+    const std::size_t low = k + 1;
+    set_samples(spread, static_cast<int>(low / spread.ny), static_cast<int>(low % spread.ny),
+                {kGround - 0.08, kGround - 0.06, kGround - 0.02, kGround, kGround + 0.02, kGround + 0.05});
+    const TraversabilityLayers s = classify(spread);
+    REQUIRE(s.step_m[k] >= 0.2f);
+    CHECK(s.cell_class[k] == CellClass::traversable);
+}
+
 TEST_CASE("a slope below the limit is traversable, one above it is not")
 {
     TerrainGrid g = empty_grid(80, 80);
@@ -219,6 +250,9 @@ TEST_CASE("bad classifier settings are refused")
     CHECK_THROWS(CellClassifier{c});
     c = ClassifierConfig{};
     c.max_age_s = NAN;
+    CHECK_THROWS(CellClassifier{c});
+    c = ClassifierConfig{};
+    c.face_mean_step_m = -0.1;
     CHECK_THROWS(CellClassifier{c});
 }
 

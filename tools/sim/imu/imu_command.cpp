@@ -74,7 +74,10 @@ int imu_main(int argc, char** argv)
     app.add_option("--mag-gain", cfg.mag_gain_scale, "EEPROM 232")->capture_default_str();
     app.add_option("--serial", cfg.serial_number, "serial number (F1)")->capture_default_str();
     app.add_option("--clock-ppm", cfg.clock_ppm, "the unit's timer error")->capture_default_str();
-    app.add_option("--attitude", attitude, "level | slow-yaw")->check(CLI::IsMember({"level", "slow-yaw"}))->capture_default_str();
+    app.add_option("--attitude", attitude,
+                   "level | slow-yaw | bench (the motions of tests/bench/imu-signs.sh, in a 20 s loop)")
+        ->check(CLI::IsMember({"level", "slow-yaw", "bench"}))
+        ->capture_default_str();
     app.add_option("--roll-deg", roll_deg, "NED roll (level mode)")->capture_default_str();
     app.add_option("--pitch-deg", pitch_deg, "NED pitch, nose up positive (level mode)")->capture_default_str();
     app.add_option("--heading-deg", heading_deg, "NED heading, clockwise from north (start heading)")->capture_default_str();
@@ -109,8 +112,9 @@ int imu_main(int argc, char** argv)
     cfg.noise.rate_sigma_radps = rate_noise;
     cfg.streaming_at_power_on = streaming;
     cfg.power_on_command = static_cast<uint8_t>(command);
-    cfg.attitude = attitude == "level" ? ugv::sim::imu::fixed_attitude(roll_deg * deg, pitch_deg * deg, heading_deg * deg)
-                                       : ugv::sim::imu::slow_yaw(heading_deg * deg, yaw_rate_dps * deg);
+    cfg.attitude = attitude == "level"  ? ugv::sim::imu::fixed_attitude(roll_deg * deg, pitch_deg * deg, heading_deg * deg)
+                   : attitude == "bench" ? ugv::sim::imu::bench_motions(now_s(), heading_deg * deg)
+                                         : ugv::sim::imu::slow_yaw(heading_deg * deg, yaw_rate_dps * deg);
 
     ugv::runtime::install_stop_signals();
     std::unique_ptr<ugv::io::Pty> pty;

@@ -36,6 +36,45 @@ AttitudeFn slow_yaw(double yaw0_rad, double yaw_rate_radps)
     };
 }
 
+AttitudeFn bench_motions(double t0_s, double yaw0_rad)
+{
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    struct Segment
+    {
+        double seconds;
+        int axis;  // 0 roll, 1 pitch, 2 yaw; -1 level
+        double from_deg, to_deg;
+    };
+    // No hold at a displaced attitude: the only still moments are level at yaw0, where the
+    // bench arms, so the first motion after each is the one it asks for.
+    static const Segment kCycle[] = {
+        {3, -1, 0, 0}, {1, 0, 0, 30},  {1, 0, 30, 0},  {3, -1, 0, 0}, {1, 1, 0, 20}, {1, 1, 20, 0},
+        {3, -1, 0, 0}, {2, 2, 0, -90}, {2, 2, -90, 0}, {3, -1, 0, 0},
+    };
+    double cycle_s = 0;
+    for (const auto& s : kCycle) cycle_s += s.seconds;
+    return [=](double t_s) {
+        double t = std::fmod(std::max(0.0, t_s - t0_s), cycle_s);
+        NedMotion m;
+        m.yaw_rad = yaw0_rad;
+        for (const auto& s : kCycle) {
+            if (t >= s.seconds) {
+                t -= s.seconds;
+                continue;
+            }
+            if (s.axis < 0) break;
+            const double angle = (s.from_deg + (s.to_deg - s.from_deg) * t / s.seconds) * kDeg;
+            const double rate = (s.to_deg - s.from_deg) / s.seconds * kDeg;
+            if (s.axis == 0) m.roll_rad = angle;
+            if (s.axis == 1) m.pitch_rad = angle;
+            if (s.axis == 2) m.yaw_rad = std::remainder(yaw0_rad + angle, 2.0 * 3.14159265358979323846);
+            m.rate_frd_radps[s.axis] = rate;
+            break;
+        }
+        return m;
+    };
+}
+
 std::size_t random_chunk_size(std::mt19937& rng, std::size_t available)
 {
     if (available <= 1) return available;

@@ -36,6 +36,12 @@ using AttitudeFn = std::function<NedMotion(double t_s)>;
 AttitudeFn fixed_attitude(double roll_rad, double pitch_rad, double yaw_rad);
 // Level, heading turning at a constant rate (clockwise positive, NED) from yaw0.
 AttitudeFn slow_yaw(double yaw0_rad, double yaw_rate_radps);
+// What a person does at tests/bench/imu-signs.sh's prompts, in a loop from t0_s (20 s a
+// cycle, the unit's NED convention): level 3 s; roll right side down to 30 deg in 1 s and
+// back in 1 s; level 3 s; nose up to 20 deg and back, 1 s each; level 3 s; turn left
+// (counter-clockwise seen from above) by 90 deg in 2 s and back in 2 s; level 3 s. One axis
+// at a time from level, so the sensor rates are the Euler rates.
+AttitudeFn bench_motions(double t0_s, double yaw0_rad);
 
 struct NoiseModel
 {

@@ -57,8 +57,9 @@ void write_out(int fd, std::vector<uint8_t>& out, Counters& c)
 bool serve(const std::string& path, const DeviceOptions& options, const FaultPlan& plan, bool verbose)
 {
     ugv::io::Pty pty(path);
-    std::fprintf(stderr, "ugv-sim lms: %s -> %s at %d baud%s\n", pty.path().c_str(), pty.slave_path().c_str(),
-                 options.initial_baud, options.initially_streaming ? ", streaming" : "");
+    std::fprintf(stderr, "ugv-sim lms: %s (%s) %s -> %s at %d baud%s\n", options.variant.name.c_str(),
+                 options.variant.type_string.c_str(), pty.path().c_str(), pty.slave_path().c_str(), options.initial_baud,
+                 options.initially_streaming ? ", streaming" : "");
     LmsDevice device(options);
     Counters counters;
     const int64_t born_us = ugv::io::monotonic_us();
@@ -118,6 +119,7 @@ int lms_main(int argc, char** argv)
     bool streaming = false, verbose = false;
     unsigned seed = 1;
     std::string password = "SICK_LMS";
+    std::string variant = "LMS200";
     std::vector<std::string> faults;
     app.add_option("--pty", path, "symlink to create for the slave side (the daemon's device)")->required();
     app.add_option("--height", height_m, "scene: sensor height above the flat floor, m")->check(CLI::Range(0.05, 10.0));
@@ -126,6 +128,8 @@ int lms_main(int argc, char** argv)
         ->check(CLI::IsMember({9600, 19200, 38400, 500000}));
     app.add_flag("--streaming", streaming, "start streaming (a device left streaming)");
     app.add_option("--password", password, "installation-mode password");
+    app.add_option("--variant", variant,
+                   "the model it acts as: " + variant_names() + " (type string, status, configuration block; docs/lms.md)");
     app.add_option("--seed", seed, "random seed of the faults");
     app.add_option("--fault", faults,
                    "garbage[:P] | bitflip[:P] | ber[:P] | truncate[:P] | silence[:EVERY[:FOR]] | disappear[:AFTER[:GONE]] "
@@ -140,6 +144,12 @@ int lms_main(int argc, char** argv)
         return 2;
     }
     DeviceOptions options;
+    try {
+        options.variant = find_variant(variant);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 2;
+    }
     options.scene = flat_floor_scene(height_m, pitch_deg * kPi / 180.0);
     options.faults = plan.device;
     options.seed = seed;

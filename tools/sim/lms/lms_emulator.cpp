@@ -16,7 +16,6 @@ using Bytes = std::vector<uint8_t>;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kConfigBytes = 32;
 constexpr uint8_t kReplyStatus = 0x10;  // the STATUS byte of every reply (bit meanings unverified)
 }  // namespace
 
@@ -36,10 +35,11 @@ LmsDevice::LmsDevice(DeviceOptions options)
       rng_(options_.seed),
       baud_(options_.initial_baud),
       streaming_(options_.initially_streaming),
-      config_(kConfigBytes, 0)
+      config_(std::max(options_.variant.config_bytes, lms::kConfigMinBytes), 0)
 {
     if (!options_.scene) options_.scene = flat_floor_scene(1.0, 10.0 * kPi / 180.0);
-    config_[lms::DeviceConfig::units_at] = lms::kConfigUnitsCm;  // factory default
+    config_[lms::DeviceConfig::units_at] = options_.variant.factory_units;
+    config_[lms::DeviceConfig::measuring_mode_at] = options_.variant.factory_measuring_mode;
 }
 
 lms::Units LmsDevice::units() const
@@ -174,14 +174,11 @@ void LmsDevice::handle(const lms::Telegram& t, int64_t now_us, int host_baud, By
         handle_mode(t, now_us, host_baud, out);
         return;
     case lms::cmd::type:
-        reply(lms::reply_command(t.command), Bytes(options_.type_string.begin(), options_.type_string.end()), now_us,
-              host_baud, out);
+        reply(lms::reply_command(t.command),
+              Bytes(options_.variant.type_string.begin(), options_.variant.type_string.end()), now_us, host_baud, out);
         return;
     case lms::cmd::status: {
-        Bytes s = {'V', '0', '2', '.', '1', '0', ' '};
-        s.push_back(streaming_ ? 0x24 : 0x25);  // operating mode
-        s.resize(30, 0x00);
-        reply(lms::reply_command(t.command), s, now_us, host_baud, out);
+        reply(lms::reply_command(t.command), status_block(options_.variant, streaming_), now_us, host_baud, out);
         return;
     }
     case lms::cmd::variant: {
@@ -206,7 +203,9 @@ void LmsDevice::handle(const lms::Telegram& t, int64_t now_us, int host_baud, By
         return;
     case lms::cmd::write_config: {
         if (d.size() < lms::kConfigMinBytes) break;
-        const bool accept = installation_ && d.size() == config_.size();
+        const auto& modes = options_.variant.measuring_modes;
+        const bool mode_ok = std::find(modes.begin(), modes.end(), d[lms::DeviceConfig::measuring_mode_at]) != modes.end();
+        const bool accept = installation_ && d.size() == config_.size() && mode_ok;
         if (accept) config_.assign(d.begin(), d.end());
         Bytes r{static_cast<uint8_t>(accept ? 0x01 : 0x00)};
         r.insert(r.end(), config_.begin(), config_.end());

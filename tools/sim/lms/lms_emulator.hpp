@@ -8,7 +8,7 @@
 // sends the device garbage and receives garbage); a baud switch taking effect after its
 // reply; scans streamed at the real period (26.67 ms at 180/0.5), skipped while the line is
 // still busy with the previous one (so 0.5 deg at 38400 gives about 5 Hz, as on the real
-// device); and injected faults.
+// device); the variants (lms_variants.hpp); and injected faults.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "lms_variants.hpp"
 #include "ugv/sick_lms2xx/decoder.hpp"
 #include "ugv/sick_lms2xx/scan.hpp"
 
@@ -52,7 +53,7 @@ struct DeviceOptions
     uint32_t seed = 1;
     int initial_baud = 9600;
     bool initially_streaming = false;  // a device left streaming by a crashed host
-    std::string type_string = "LMS200;30106";
+    Variant variant = variants().front();  // what it answers to 3A/31/74 (lms_variants.hpp)
     std::string password = "SICK_LMS";
     // Beam times. The mirror turns at 75 Hz and crosses the field in the first part of each
     // turn (angle x 13.33 ms / 360 deg); at 0.5 deg a scan is 2 sweeps, at 0.25 deg 4, sweep

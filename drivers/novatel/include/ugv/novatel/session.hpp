@@ -10,8 +10,11 @@
 // then runs at com_baud, else at the open rate). found_at_baud() tells where it was.
 // passive mode: sends nothing; a receiver configured by someone else is just read.
 //
-// Silence: no valid frame for silence_timeout_us -> poll() reports `silent`; the caller
-// (the daemon) then reports DEGRADED, reopens the port and starts the session again.
+// Silence: no valid frame for silence_timeout_us -> poll() reports `silent` (and again on
+// every poll until a frame comes). The device is still there: the caller reports DEGRADED
+// and keeps reading the same open port (configure mode may start() again on it, as a
+// receiver that restarted has forgotten its logs). Only `closed` -- EIO, a hang-up, the node
+// vanished or replaced (io::SerialPort) -- means the port must be reopened.
 #pragma once
 
 #include <cstdint>
@@ -85,6 +88,8 @@ public:
     void set_raw_tap(RawTap tap) { raw_tap_ = std::move(tap); }
 
     const std::string& error() const { return error_; }
+    // True once the stream reported the device gone (in start() or poll()): reopen it.
+    bool stream_closed() const { return stream_closed_; }
     // The rate the receiver answered at in the last start (0 before one answered).
     int found_at_baud() const { return found_at_baud_; }
     const SessionCounters& counters() const { return counters_; }
@@ -115,6 +120,7 @@ private:
     std::string last_reply_;
     RawTap raw_tap_;
     int found_at_baud_ = 0;
+    bool stream_closed_ = false;
 };
 
 }  // namespace ugv::novatel

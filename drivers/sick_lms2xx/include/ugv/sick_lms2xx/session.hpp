@@ -2,8 +2,10 @@
 // whatever rate it was left (probing 9600 -> 19200 -> 38400 -> 500000), switches it to the
 // configured rate, stops streaming before reconfiguring, sets the variant, measuring mode
 // and units, starts streaming, and turns scan telegrams into time-stamped scans. Every
-// request has a timeout and retries; silence for several scan periods, a vanished device or
-// repeated NAKs send it back to probing, never out of run().
+// request has a timeout and retries; silence for several scan periods or repeated NAKs send
+// it back to probing on the same open port (a device that restarted streams only when
+// asked again); only a device that is gone (the stream says `closed`: EIO, hang-up, node
+// vanished or replaced) is reopened. Never out of run().
 //
 // Threads: run() blocks on the calling thread (a daemon's device thread). stats() may be
 // read from any thread.
@@ -71,6 +73,8 @@ struct SessionStats
     std::atomic<int64_t> naks{0};
     std::atomic<int64_t> timeouts{0};     // requests unanswered and scan silences
     std::atomic<int64_t> reconnects{0};   // times streaming was lost and recovery started
+    std::atomic<int64_t> silences{0};     // scan silences (the port stays open: re-initialised on it)
+    std::atomic<int64_t> reopens{0};      // the port closed and opened again: the device was gone
     std::atomic<int64_t> bytes_in{0};
     std::atomic<int64_t> bad_scans{0};    // good CRC but undecodable or wrong value count
     std::atomic<int64_t> clock_restarts{0};  // scan clock restarts (see ugv/io/periodic_clock.hpp)
@@ -84,6 +88,8 @@ struct SessionStats
         f("naks", naks.load());
         f("timeouts", timeouts.load());
         f("reconnects", reconnects.load());
+        f("silences", silences.load());
+        f("reopens", reopens.load());
         f("bytes_in", bytes_in.load());
         f("bad_scans", bad_scans.load());
         f("clock_restarts", clock_restarts.load());
@@ -126,6 +132,11 @@ public:
     SessionState state() const { return state_; }
     const std::string& last_error() const { return error_; }
     const std::string& device_type() const { return device_type_; }
+    // From the last handshake: 200/211/220/221/291 (model.hpp; 0 = a type string not known),
+    // the status block's software version, the configuration block's length.
+    int device_model() const { return device_model_; }
+    const std::string& software_version() const { return software_version_; }
+    std::size_t config_block_bytes() const { return config_block_bytes_; }
     int device_baud() const { return device_baud_; }
     // Seconds without a scan after which the session re-initialises.
     double silence_timeout_s() const;
@@ -158,7 +169,9 @@ private:
     Decoder decoder_;
     SessionStats stats_;
     SessionState state_ = SessionState::stopped;
-    std::string error_, device_type_;
+    std::string error_, device_type_, software_version_;
+    int device_model_ = 0;
+    std::size_t config_block_bytes_ = 0;
     int device_baud_ = 0;
     bool closed_ = false;
     bool streaming_ = false;

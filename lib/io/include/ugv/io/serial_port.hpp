@@ -1,10 +1,17 @@
 // A serial port on termios: raw 8N1, any baud rate (standard ones and others such as
 // 500000 through termios2/BOTHER), non-blocking reads with poll() and a receive time stamp
 // per chunk, writes with optional inter-byte spacing, reopen after hang-up or EIO.
+//
+// The device is gone -- read() says `closed` -- only when the port says so (EIO, hang-up,
+// POLLERR/POLLNVAL) or when its node vanished or now names another device (a USB adapter
+// unplugged behind a udev symlink, an emulator's pty replaced), never because it is quiet:
+// a silent device is still there, and a reopen would drop the bytes it sends next.
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <string>
+#include <sys/types.h>
 
 #include "ugv/io/byte_stream.hpp"
 
@@ -28,6 +35,12 @@ public:
     int fd() const { return fd_; }
     const std::string& path() const { return path_; }
 
+    // False (with last_error() saying why) when the node at path() vanished or is no longer
+    // the device this port has open (compares st_rdev and st_ino). read() checks this itself
+    // while nothing arrives, at most every kNodeCheckPeriod.
+    bool node_present();
+    static constexpr std::chrono::milliseconds kNodeCheckPeriod{500};
+
     // Wait between bytes on write, for devices that drop bytes sent back to back.
     void set_inter_byte_spacing(std::chrono::microseconds spacing) { spacing_ = spacing; }
 
@@ -47,6 +60,9 @@ private:
     std::string path_;
     std::string error_;
     std::chrono::microseconds spacing_{0};
+    dev_t rdev_ = 0;               // the open device's node: compared with path() while quiet
+    ino_t ino_ = 0;
+    int64_t next_node_check_us_ = 0;  // monotonic
 };
 
 // Sets baud on any tty fd (termios2 with BOTHER, so non-standard rates work). False if refused.

@@ -18,7 +18,9 @@ struct ClassifierConfig
 {
     double max_step_m = 0.2;          // a top this high above the local ground is an obstacle
     double max_drop_m = 0.2;          // a bottom this deep below it is a negative obstacle
-    double step_radius_m = 0.3;       // step and drop (in the cost) against the cells within this
+    double step_radius_m = 0.3;       // step and drop against the cells within this
+    double face_mean_step_m = 0.07;   // a step of max_step is a vertical face (obstacle) when the
+                                      // cell's mean also stands this far above the lowest mean there
     double max_slope_deg = 25;        // a steeper neighbourhood is an obstacle
     double slope_radius_m = 0.5;      // the plane for the slope is fitted over this radius
     double ground_radius_m = 1.5;     // the local ground is taken over this radius
@@ -60,7 +62,7 @@ private:
 
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
-    std::vector<float> top_, bottom_, lowest_, highest_, tmp_, lattice_;
+    std::vector<float> top_, bottom_, lowest_, highest_, lowest_mean_, tmp_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_, offsets_;
     std::vector<uint8_t> edge_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_;
