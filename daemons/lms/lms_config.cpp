@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
 
 namespace ugv::lms_daemon {
 
@@ -35,6 +36,15 @@ LmsConfig read_config(runtime::Config& cfg)
     if (s.resolution_cdeg == 25 && s.angle_deg != 100) cfg.fail("resolution_deg", "0.25 deg needs angle_deg = 100");
     s.units = cfg.get_enum("units", "mm", {"mm", "cm"}) == "mm" ? sick_lms2xx::Units::mm : sick_lms2xx::Units::cm;
     s.scan_index = cfg.get_bool("scan_index", false);
+    s.beam_timing = cfg.get_enum("beam_timing", "interlaced", {"interlaced", "linear"}) == "linear"
+                        ? sick_lms2xx::BeamTiming::linear
+                        : sick_lms2xx::BeamTiming::interlaced;
+    s.sweep_order = cfg.get_string("sweep_order", "");
+    try {
+        (void)sick_lms2xx::parse_sweep_order(s.sweep_order, s.resolution_cdeg);
+    } catch (const std::invalid_argument& e) {
+        cfg.fail("sweep_order", e.what());
+    }
     s.password = cfg.get_string("password", "SICK_LMS");
     if (s.password.size() != 8) cfg.fail("password", "must be exactly 8 characters");
     s.stop_on_exit = cfg.get_bool("stop_on_exit", true);

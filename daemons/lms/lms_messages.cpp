@@ -25,6 +25,9 @@ ugv::laser_scan_t to_message(const lms::StampedScan& s, const std::string& senso
     m.scan_period = static_cast<float>(s.scan_period_s);
     m.range_max = static_cast<float>(s.range_max_m);
     m.device_scan_counter = s.scan.scan_index;
+    m.nsweeps = static_cast<int8_t>(s.sweep_order.sweeps);
+    m.sweep_order.assign(s.sweep_order.order.begin(), s.sweep_order.order.begin() + s.sweep_order.sweeps);
+    m.sweep_period = static_cast<float>(s.sweep_period_s);
     m.nranges = static_cast<int32_t>(s.scan.ranges_m.size());
     m.ranges = s.scan.ranges_m;
     m.flags = s.scan.flags;

@@ -4,18 +4,7 @@
 
 namespace ugv::nodscan_daemon {
 
-nodscan::ScanView to_scan_view(const laser_scan_t& s)
-{
-    nodscan::ScanView v;
-    v.utime = s.utime;
-    v.angle_min = s.angle_min;
-    v.angle_increment = s.angle_increment;
-    v.time_increment = s.time_increment;
-    v.range_max = s.range_max;
-    v.ranges = s.ranges.data();
-    v.n = std::min<std::size_t>(s.ranges.size(), static_cast<std::size_t>(std::max(0, s.nranges)));
-    return v;
-}
+nodscan::ScanView to_scan_view(const laser_scan_t& s) { return nodscan::scan_view_of(s); }
 
 point_cloud_t to_message(const nodscan::PointCloud& cloud, const std::string& sensor_id, int64_t seq)
 {

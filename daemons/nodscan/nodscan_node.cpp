@@ -20,8 +20,10 @@ constexpr double kMaxScanSpanS = 1.0;
 
 bool timing_ok(const laser_scan_t& s)
 {
-    const double span = s.time_increment * static_cast<double>(std::max(0, s.nranges - 1));
-    return std::isfinite(s.time_increment) && s.time_increment >= 0.0 && span <= kMaxScanSpanS;
+    const nodscan::ScanView v = to_scan_view(s);
+    return v.sweeps >= 1 && std::isfinite(s.time_increment) && s.time_increment >= 0.0 &&
+           static_cast<double>(s.time_increment) * std::max(0, s.nranges - 1) <= kMaxScanSpanS &&
+           v.span_s() <= kMaxScanSpanS;
 }
 
 }  // namespace

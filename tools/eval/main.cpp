@@ -8,6 +8,8 @@
 //       (traverse_score.hpp, docs/traverse.md section 4).
 //   ugv-eval diff A.lcm B.lcm [--pair time|last] [--max-dz M] [--max-one-sided F] [--all]
 //       the maps of two logs against each other (map_diff.hpp).
+//   ugv-eval interlace LOG [--json]
+//       which sweep order of an interlacing laser fits a nodding log (interlace_command.hpp).
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
@@ -28,6 +30,7 @@
 
 #include "floor_study.hpp"
 #include "ugv/simworld/height_field.hpp"
+#include "interlace_command.hpp"
 #include "map_diff.hpp"
 #include "truth_terrain.hpp"
 #include "traverse_score.hpp"
@@ -205,10 +208,12 @@ int main(int argc, char** argv)
     study->add_flag("--spread", o.spread, "spread points whose sigma exceeds the grid (section 3.5)");
     ugv::eval::MapDiffCommand diff(app);  // its options are bound to its members
     ugv::eval::TraverseScoreCommand traverse(app);
+    ugv::eval::InterlaceCommand interlace(app);
     CLI11_PARSE(app, argc, argv);
 
     if (diff.chosen()) return diff.run();
     if (traverse.chosen()) return traverse.run();
+    if (interlace.chosen()) return interlace.run();
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {

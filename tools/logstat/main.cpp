@@ -41,6 +41,22 @@ std::string json_escaped(const std::string& s)
     return out;
 }
 
+// Seconds from a scan's utime to its last measured beam: with interlaced sweeps that is in
+// the last sweep, not necessarily the last index (laser_scan_t's beam time).
+double last_beam_offset_s(const ugv::laser_scan_t& s)
+{
+    const int n = std::max(0, s.nranges);
+    const int sweeps = s.nsweeps > 1 && static_cast<int>(s.sweep_order.size()) == s.nsweeps ? s.nsweeps : 1;
+    double span = 0.0;
+    for (int i = std::max(0, n - sweeps); i < n; ++i) {
+        int k = 0;
+        for (int q = 0; q < sweeps; ++q)
+            if (sweeps > 1 && s.sweep_order[static_cast<std::size_t>(q)] == i % sweeps) k = q;
+        span = std::max(span, k * static_cast<double>(s.sweep_period) + i * static_cast<double>(s.time_increment));
+    }
+    return span;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -75,7 +91,7 @@ int main(int argc, char** argv)
         ugv::logstat::ScanToMapLatency latency;
         ugv::bus::subscribe<ugv::laser_scan_t>(
             *bus, scan_channel, [&](const std::string&, const ugv::laser_scan_t& s, int64_t t) {
-                const double span_us = static_cast<double>(s.time_increment) * 1e6 * std::max(0, s.nranges - 1);
+                const double span_us = last_beam_offset_s(s) * 1e6;
                 latency.add_scan(t, ugv::logstat::shifted_utime(s.utime, span_us));
             });
         bus->subscribe(map_channel, [&](const std::string&, const uint8_t* d, std::size_t n, int64_t t) {

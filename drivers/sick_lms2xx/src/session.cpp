@@ -30,6 +30,11 @@ void validate(const SessionConfig& c)
     if (c.password.size() != 8) throw std::invalid_argument("password: must be 8 characters");
     if (c.reply_timeout_ms < 10 || c.attempts < 1 || c.silence_periods < 1)
         throw std::invalid_argument("timeouts: reply_timeout_ms >= 10, attempts >= 1, silence_periods >= 1");
+    try {
+        (void)parse_sweep_order(c.sweep_order, c.resolution_cdeg);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string("sweep_order: ") + e.what());
+    }
 }
 
 const char* to_string(SessionState s)
@@ -56,6 +61,7 @@ Session::Session(io::ByteStream& stream, SessionConfig config, SessionCallbacks 
         };
     if (!cb_.sleep_us) cb_.sleep_us = [](int64_t us) { std::this_thread::sleep_for(std::chrono::microseconds(us)); };
     expected_beams_ = beams_per_scan(config_.angle_deg, config_.resolution_cdeg);
+    sweep_order_ = parse_sweep_order(config_.sweep_order, config_.resolution_cdeg);
     rx_.resize(4096);
 }
 
@@ -158,10 +164,13 @@ void Session::handle_scan(const Telegram& t)
     const int lost = static_cast<int>(std::min<uint64_t>(rejected - std::exchange(rejected_at_last_scan_, rejected), 1000));
     const int64_t arrival = scan_clock_.update(last_byte_utime, lost);
     stats_.clock_restarts = static_cast<int64_t>(scan_clock_.restarts());
-    const ScanStamp stamp = stamp_scan(arrival, t.raw.size(), device_baud_, period, expected_beams_);
+    const ScanStamp stamp = stamp_scan(scan_end_utime(arrival, t.raw.size(), device_baud_), config_.angle_deg,
+                                       config_.resolution_cdeg, config_.beam_timing, sweep_order_);
     scan_.arrival_utime = last_byte_utime;
     scan_.first_beam_utime = stamp.first_beam_utime;
     scan_.time_increment_s = stamp.time_increment_s;
+    scan_.sweep_period_s = stamp.sweep_period_s;
+    scan_.sweep_order = stamp.order;
     scan_.scan_period_s = period;
     scan_.angle_min_rad = -config_.angle_deg / 2.0 * kPi / 180.0;
     scan_.angle_increment_rad = config_.resolution_cdeg / 100.0 * kPi / 180.0;

@@ -1,5 +1,6 @@
 #include "ugv/nodscan/scan_assembler.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ugv::nodscan {
@@ -12,6 +13,7 @@ void PointCloud::clear()
     range.clear();
     variance.clear();
     time_offset.clear();
+    beam.clear();
 }
 
 ScanAssembler::ScanAssembler(AssemblerConfig config)
@@ -20,10 +22,34 @@ ScanAssembler::ScanAssembler(AssemblerConfig config)
 {
 }
 
+bool ScanView::set_sweeps(const int8_t* order, int count, double period)
+{
+    if (count < 1 || count > kMaxSweeps || !std::isfinite(period) || period < 0.0) return false;
+    std::array<int8_t, kMaxSweeps> of_phase{};
+    unsigned seen = 0;
+    for (int k = 0; k < count; ++k) {
+        const int p = order[k];
+        if (p < 0 || p >= count || (seen & (1u << p)) != 0) return false;
+        seen |= 1u << p;
+        of_phase[static_cast<std::size_t>(p)] = static_cast<int8_t>(k);
+    }
+    sweeps = count;
+    sweep_period = period;
+    sweep_of_phase = of_phase;
+    return true;
+}
+
+double ScanView::span_s() const
+{
+    double span = 0.0;
+    const auto s = static_cast<std::size_t>(sweeps);
+    for (std::size_t i = n > s ? n - s : 0; i < n; ++i) span = std::max(span, beam_offset_s(i));
+    return span;
+}
+
 int64_t ScanAssembler::last_beam_utime(const ScanView& s)
 {
-    if (s.n == 0) return s.utime;
-    return s.utime + static_cast<int64_t>(std::llround(s.time_increment * 1e6 * static_cast<double>(s.n - 1)));
+    return s.utime + static_cast<int64_t>(std::llround(s.span_s() * 1e6));
 }
 
 void ScanAssembler::prepare_directions(const ScanView& s)
@@ -53,13 +79,26 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
     prepare_directions(s);
     tilt_.resize(s.n);
     tilt_ok_.resize(s.n);
-    servo.angles_at(s.utime, s.time_increment * 1e6, s.n, config_.max_extrapolation_us, tilt_.data(),
-                    tilt_ok_.data());
+    // Each sweep's beams are evenly spaced in time: one pass of the servo history per sweep.
+    const auto sweeps = static_cast<std::size_t>(std::max(1, s.sweeps));
+    phase_tilt_.resize(s.n / sweeps + 1);
+    phase_ok_.resize(s.n / sweeps + 1);
+    for (std::size_t p = 0; p < sweeps && p < s.n; ++p) {
+        const std::size_t count = (s.n - p + sweeps - 1) / sweeps;
+        const int64_t t0 = s.utime + static_cast<int64_t>(std::llround(s.beam_offset_s(p) * 1e6));
+        servo.angles_at(t0, s.time_increment * 1e6 * static_cast<double>(sweeps), count, config_.max_extrapolation_us,
+                        phase_tilt_.data(), phase_ok_.data());
+        for (std::size_t j = 0; j < count; ++j) {
+            tilt_[p + j * sweeps] = phase_tilt_[j];
+            tilt_ok_[p + j * sweeps] = phase_ok_[j];
+        }
+    }
 
     const auto origin_tilt = servo.angle_at(s.utime, config_.max_extrapolation_us);
     out.sensor_origin = laser_origin_body(config_.mount, origin_tilt.value_or(0.0));
 
     for (auto* v : {&out.x, &out.y, &out.z, &out.range, &out.variance, &out.time_offset}) v->reserve(s.n);
+    out.beam.reserve(s.n);
     const Eigen::Vector3d& tl = config_.mount.laser_xyz_m;
     const Eigen::Vector3d& ta = config_.mount.axis_xyz_m;
     const Eigen::Matrix3d& ra = r_axis_;
@@ -91,7 +130,8 @@ AssembleStats ScanAssembler::assemble(const ScanView& s, const ServoHistory& ser
         out.z.push_back(static_cast<float>(ra(2, 0) * qx + ra(2, 1) * py + ra(2, 2) * qz + ta(2)));
         out.range.push_back(static_cast<float>(r));
         out.variance.push_back(static_cast<float>(var_r + r * r * var_a));
-        out.time_offset.push_back(static_cast<float>(s.time_increment * static_cast<double>(i)));
+        out.time_offset.push_back(static_cast<float>(s.beam_offset_s(i)));
+        out.beam.push_back(static_cast<uint32_t>(i));
     }
     st.points = out.size();
     return st;

@@ -55,7 +55,11 @@ TEST_CASE("ugv-lms: handshake 9600 -> 500000, 37.5 Hz scans, restart of the devi
     CHECK(s.angle_min == Approx(-kPi / 2));
     CHECK(s.angle_increment == Approx(0.5 * kPi / 180));
     CHECK(s.scan_period == Approx(2.0 / 75.0));
-    CHECK(s.time_increment == Approx(2.0 / 75.0 / 360.0));
+    // Interlaced: 2 sweeps of 13.33 ms, even beams first, 0.5 deg of the mirror per beam.
+    CHECK(s.time_increment == Approx(0.5 / 360.0 / 75.0));
+    CHECK(s.nsweeps == 2);
+    CHECK(s.sweep_order == std::vector<int8_t>{0, 1});
+    CHECK(s.sweep_period == Approx(1.0 / 75.0));
     CHECK(s.range_max == Approx(8.182));
     CHECK(s.device_scan_counter == -1);
     // Straight ahead: the floor 1.0 m below, scan plane pitched 10 deg down.
@@ -63,9 +67,10 @@ TEST_CASE("ugv-lms: handshake 9600 -> 500000, 37.5 Hz scans, restart of the devi
     CHECK(std::isnan(s.ranges[0]));
     CHECK(s.flags[0] == ugv::laser_scan_t::FLAG_OVERFLOW);
     CHECK(s.flags[180] == ugv::laser_scan_t::FLAG_OK);
-    // First-beam time before the bus received it: transmission + scan time (41.3 ms) at least.
+    // Scan start before the bus received it: transmission (14.64 ms) + a sweep and a field
+    // crossing (20 ms) at least.
     const int64_t lag = l.recv_utime.back() - s.utime;
-    CHECK(lag >= 41'000);
+    CHECK(lag >= 34'600);
     CHECK(lag < 1'000'000);
     for (std::size_t i = n0 + 1; i < l.scans.size(); ++i) REQUIRE(l.scans[i].seq == l.scans[i - 1].seq + 1);
 
@@ -138,6 +143,8 @@ TEST_CASE("ugv-lms: a bad config value exits 2 with FILE: KEY: why", "[lms][inte
         {"channel = \"lms scan\"\n", "channel"},
         {"publish_raw = \"yes\"\n", "publish_raw"},
         {"no_such_key = 1\n", "no_such_key"},
+        {"sweep_order = \"0123\"\n", "sweep_order"},
+        {"beam_timing = \"mirror\"\n", "beam_timing"},
     };
     for (const auto& [text, key] : cases) {
         const std::string cfg = dir / "bad.toml";

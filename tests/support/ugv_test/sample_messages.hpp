@@ -42,6 +42,9 @@ inline std::vector<std::string> publish_samples(bus::Bus& b)
     scan.ranges = {1.25f, NAN};
     scan.flags = {0, laser_scan_t::FLAG_DAZZLE};
     scan.angle_increment = 0.5f;
+    scan.nsweeps = 2;
+    scan.sweep_order = {1, 0};
+    scan.sweep_period = 0.0125f;
     stamp(scan, "laser_scan_t");
     servo_state_t servo{};
     servo.angle = -0.25;

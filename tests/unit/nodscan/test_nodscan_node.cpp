@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "nodscan_node.hpp"
@@ -125,6 +126,34 @@ TEST_CASE("A scan whose beam timing is NaN, negative or over 1 s is dropped and 
     node.on_scan(scan(2'000));
     node.on_servo(servo(60'000, 0.2));
     CHECK(out.size() == 1);  // the good one, and only it
+}
+
+TEST_CASE("An interlaced scan waits for its last measured beam; a broken sweep layout is dropped")
+{
+    std::vector<point_cloud_t> out;
+    NodscanNode node(config(), [&](const point_cloud_t& m) { out.push_back(m); });
+    node.on_servo(servo(0, 0.2));
+    node.on_servo(servo(12'000, 0.2));
+    // 11 beams, 1 ms per index, 2 sweeps 20 ms apart, even beams second: beam 10 at 1 + 30 ms.
+    laser_scan_t s = scan(1'000);
+    s.nsweeps = 2;
+    s.sweep_order = {1, 0};
+    s.sweep_period = 0.020f;
+    node.on_scan(s);
+    node.on_servo(servo(25'000, 0.2));
+    CHECK(out.empty());  // beam 9 (odd: 10 ms) is bracketed, beam 10 (31 ms) is not
+    node.on_servo(servo(31'000, 0.2));
+    REQUIRE(out.size() == 1);
+    CHECK(out[0].time_offset[10] == Approx(0.030));
+    CHECK(out[0].time_offset[9] == Approx(0.009));
+    for (const auto& [order, period] : {std::pair<std::vector<int8_t>, float>{{0, 0}, 0.02f},
+                                        {{0, 2}, 0.02f}, {{1, 0}, NAN}, {{1, 0}, 2.0f}}) {
+        laser_scan_t bad = s;
+        bad.sweep_order = order;
+        bad.sweep_period = period;
+        node.on_scan(bad);
+    }
+    CHECK(node.counters().scans_bad_timing == 4);
 }
 
 TEST_CASE("ugv-nodscan configuration: mount in degrees, limits checked")

@@ -76,6 +76,40 @@ TEST_CASE("Each beam uses the tilt at its own time")
     }
 }
 
+TEST_CASE("Interlaced sweeps: each beam uses the tilt of the sweep that measured it")
+{
+    // Tilt ramps 0 -> 0.4 rad over 40 ms. 9 forward beams measured in 2 sweeps 20 ms apart,
+    // odd beams first: beam i at 1 ms x i + 20 ms if i is even.
+    AssemblerConfig cfg;
+    cfg.mount.axis_xyz_m = {0.0, 0.0, 1.0};
+    ScanAssembler a(cfg);
+    ServoHistory servo;
+    servo.add({1'000'000, 0.0});
+    servo.add({1'040'000, 0.4});
+    std::vector<float> ranges(9, 1.0f);
+    ScanView v = view(ranges, 1'000'000, 0.0, 0.0, 0.001);
+    const int8_t odd_first[2] = {1, 0};
+    REQUIRE(v.set_sweeps(odd_first, 2, 0.020));
+    PointCloud pc;
+    REQUIRE(a.assemble(v, servo, pc).points == 9);
+    for (std::size_t i = 0; i < 9; ++i) {
+        const double t = 0.001 * static_cast<double>(i) + (i % 2 == 0 ? 0.020 : 0.0);
+        CHECK(pc.time_offset[i] == Approx(t));
+        CHECK(pc.z[i] == Approx(1.0 - std::sin(10.0 * t)).margin(1e-6));
+    }
+    // The last beam measured is beam 8, in the second sweep.
+    CHECK(ScanAssembler::last_beam_utime(v) == 1'028'000);
+    // Layouts that are not one are refused, leaving the view as it was.
+    const int8_t twice[2] = {0, 0};
+    const int8_t out_of_range[2] = {0, 2};
+    CHECK_FALSE(v.set_sweeps(twice, 2, 0.02));
+    CHECK_FALSE(v.set_sweeps(out_of_range, 2, 0.02));
+    CHECK_FALSE(v.set_sweeps(odd_first, 2, NAN));
+    CHECK_FALSE(v.set_sweeps(odd_first, 0, 0.02));
+    CHECK(v.sweeps == 2);
+    CHECK(v.sweep_of_phase[0] == 1);
+}
+
 TEST_CASE("Invalid ranges and beams without a servo angle are dropped and counted")
 {
     AssemblerConfig cfg;

@@ -27,6 +27,8 @@ TEST_CASE("lms config: defaults", "[lms][daemon]")
     CHECK(c.session.stop_on_exit);
     CHECK_FALSE(c.session.scan_index);
     CHECK(c.session.password == "SICK_LMS");
+    CHECK(c.session.beam_timing == ugv::sick_lms2xx::BeamTiming::interlaced);
+    CHECK(c.session.sweep_order.empty());
 }
 
 TEST_CASE("lms config: every key read", "[lms][daemon]")
@@ -34,7 +36,8 @@ TEST_CASE("lms config: every key read", "[lms][daemon]")
     Config cfg = Config::parse("device = \"/dev/ttyUSB3\"\nbaud = 38400\nangle_deg = 100\nresolution_deg = 0.25\n"
                                "units = \"cm\"\nscan_index = true\nstop_on_exit = false\nchannel = \"LMS_FRONT\"\n"
                                "raw_channel = \"RAW_LMS_FRONT\"\npublish_raw = true\nsensor_id = \"front\"\n"
-                               "reply_timeout_ms = 500\nattempts = 5\nsilence_periods = 8\n",
+                               "reply_timeout_ms = 500\nattempts = 5\nsilence_periods = 8\n"
+                               "beam_timing = \"linear\"\nsweep_order = \"3102\"\n",
                                "lms.toml");
     const LmsConfig c = read_config(cfg);
     CHECK_NOTHROW(cfg.finish());
@@ -52,6 +55,8 @@ TEST_CASE("lms config: every key read", "[lms][daemon]")
     CHECK(c.session.reply_timeout_ms == 500);
     CHECK(c.session.attempts == 5);
     CHECK(c.session.silence_periods == 8);
+    CHECK(c.session.beam_timing == ugv::sick_lms2xx::BeamTiming::linear);
+    CHECK(c.session.sweep_order == "3102");
 }
 
 TEST_CASE("lms config: refusals name the key and why", "[lms][daemon]")
@@ -74,6 +79,11 @@ TEST_CASE("lms config: refusals name the key and why", "[lms][daemon]")
     refused("baud = 57600\n", "baud", "");
     refused("angle_deg = 90\n", "angle_deg", "");
     refused("units = \"m\"\n", "units", "");
+    refused("beam_timing = \"mirror\"\n", "beam_timing", "");
+    refused("sweep_order = \"0123\"\n", "sweep_order",
+            "\"0123\" has 4 digits; a 0.5 deg scan has 2 sweeps (e.g. \"01\" or \"10\")");
+    refused("sweep_order = \"00\"\n", "sweep_order",
+            "\"00\" is not an order of the beam phases 0..1, each once (e.g. \"01\" or \"10\")");
 }
 
 TEST_CASE("StampedScan -> laser_scan_t", "[lms][daemon]")
@@ -88,6 +98,8 @@ TEST_CASE("StampedScan -> laser_scan_t", "[lms][daemon]")
     s.angle_min_rad = -0.5;
     s.angle_increment_rad = 0.25;
     s.range_max_m = 8.182;
+    s.sweep_period_s = 1.0 / 75.0;
+    s.sweep_order = ugv::sick_lms2xx::parse_sweep_order("10", 50);
     const ugv::laser_scan_t m = to_message(s, "front", 42);
     CHECK(m.utime == 1'700'000'000'123'456);
     CHECK(m.seq == 42);
@@ -102,6 +114,9 @@ TEST_CASE("StampedScan -> laser_scan_t", "[lms][daemon]")
     CHECK(m.time_increment == Approx(0.001f));
     CHECK(m.scan_period == Approx(0.02f));
     CHECK(m.range_max == Approx(8.182f));
+    CHECK(m.nsweeps == 2);
+    CHECK(m.sweep_order == std::vector<int8_t>{1, 0});
+    CHECK(m.sweep_period == Approx(1.0f / 75.0f));
     // It encodes (the array sizes agree with nranges).
     std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
     CHECK(m.encode(buf.data(), 0, static_cast<int>(buf.size())) == static_cast<int>(buf.size()));

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "fault_spec.hpp"
@@ -11,6 +12,7 @@
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/requests.hpp"
 #include "ugv/sick_lms2xx/scan.hpp"
+#include "ugv/sick_lms2xx/timing.hpp"
 
 using namespace ugv::sick_lms2xx;
 namespace sim = ugv::sim::lms;
@@ -359,4 +361,76 @@ TEST_CASE("emulator: --fault flags", "[lms][emulator]")
     CHECK_THROWS(sim::add_fault("garbage:x", plan));
     CHECK_THROWS(sim::add_fault("silence:1:2", plan));  // silent longer than the period
     CHECK_THROWS(sim::add_fault("bitflip:0.1:3", plan));
+}
+
+namespace {
+// The beam times the emulator asked its scene for, for its first scan: sent one scan period
+// after streaming started at 0 (26666 us at 0.5 deg, 53333 us at 0.25 deg).
+std::vector<double> beam_times_of_first_scan(sim::DeviceOptions o, int angle_deg = 180, int resolution_cdeg = 50)
+{
+    std::vector<double> times;
+    o.initial_baud = 500000;
+    o.beam_scene = [&times](double, int64_t t) {
+        times.push_back(static_cast<double>(t));
+        return 2.0;
+    };
+    sim::LmsDevice d(o);
+    if (resolution_cdeg != 50) ask(d, request_variant(angle_deg, resolution_cdeg), 500000, 0);
+    ask(d, request_start_streaming(), 500000, 0);
+    Bytes out;
+    d.tick(static_cast<int64_t>(scan_period_s(resolution_cdeg) * 1e6), 500000, out);
+    REQUIRE(parse(out).raws.size() == 1);
+    return times;
+}
+}  // namespace
+
+TEST_CASE("emulator: beam times follow the mirror's interlaced sweeps", "[lms][emulator]")
+{
+    // 361 values = 732 bytes, 14640 us at 500000 baud: the last beam at 26666 - 14640 = 12026.
+    // The scan started a turn (13333.3 us) and a 180 deg crossing (6666.7 us) before it.
+    constexpr double kStart = 12026.0 - 20000.0;
+    constexpr double kTurn = 1e6 / 75.0;
+    SECTION("0.5 deg, even beams first (the default)")
+    {
+        const std::vector<double> t = beam_times_of_first_scan({});
+        REQUIRE(t.size() == 361);
+        for (int i = 0; i < 361; ++i)
+            CHECK(t[static_cast<std::size_t>(i)] == Approx(kStart + (i % 2) * kTurn + i * 0.5 * kTurn / 360.0).margin(0.6));
+        CHECK(t[360] == Approx(kStart + 6666.7).margin(1));  // the last even beam ends sweep 0
+        CHECK(t[359] - t[358] == Approx(13333.3 + 18.5).margin(1));
+    }
+    SECTION("0.5 deg, odd beams first")
+    {
+        sim::DeviceOptions o;
+        REQUIRE(sim::set_sweep_order(o, "10"));
+        const std::vector<double> t = beam_times_of_first_scan(o);
+        CHECK(t[1] == Approx(kStart + 18.5).margin(0.6));
+        CHECK(t[0] == Approx(kStart + 13333.3).margin(0.6));
+        CHECK(t[360] == Approx(12026.0).margin(0.6));  // the last beam measured
+    }
+    SECTION("0.25 deg over 100 deg, four sweeps in the order 2031")
+    {
+        sim::DeviceOptions o;
+        REQUIRE(sim::set_sweep_order(o, "2031"));
+        const std::vector<double> t = beam_times_of_first_scan(o, 100, 25);
+        REQUIRE(t.size() == 401);
+        // 401 values = 812 bytes (16240 us); the scan starts 3 turns and a 100 deg crossing
+        // (3703.7 us) before its last beam, which the telegram follows.
+        const double start = 53333.0 - 16240.0 - 3 * kTurn - 3703.7;
+        const int sweep_of_phase[4] = {1, 3, 0, 2};
+        for (int i = 0; i < 401; ++i)
+            CHECK(t[static_cast<std::size_t>(i)] ==
+                  Approx(start + sweep_of_phase[i % 4] * kTurn + i * 0.25 * kTurn / 360.0).margin(0.6));
+    }
+    SECTION("linear timing, for comparison: angle order over the whole scan period")
+    {
+        sim::DeviceOptions o;
+        o.linear_timing = true;
+        const std::vector<double> t = beam_times_of_first_scan(o);
+        CHECK(t[0] == Approx(12026.0 - 2 * kTurn).margin(0.6));
+        CHECK(t[1] - t[0] == Approx(74.07).margin(1));
+        CHECK(t[360] == Approx(12026.0).margin(0.6));
+    }
+    CHECK_FALSE(sim::set_sweep_order(*std::make_unique<sim::DeviceOptions>(), "011"));
+    CHECK_FALSE(sim::set_sweep_order(*std::make_unique<sim::DeviceOptions>(), "0113"));
 }

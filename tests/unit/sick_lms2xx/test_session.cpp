@@ -98,9 +98,12 @@ TEST_CASE("full handshake from 9600 to 500000 and 37.5 Hz scans with exact stamp
     CHECK(sc.scan_period_s == Approx(2.0 / 75.0));
     CHECK(sc.range_max_m == Approx(8.182));
     CHECK(sc.scan.scan_index == -1);
-    // 732 bytes at 500000 baud = 14640 us on the wire, plus a scan of 26667 us.
-    CHECK(sc.first_beam_utime == sc.arrival_utime - 14640 - 26667);
-    CHECK(sc.time_increment_s == Approx(2.0 / 75.0 / 360.0));
+    // 732 bytes at 500000 baud = 14640 us on the wire; the scan started one mirror turn plus
+    // one crossing of the 180 deg field (20000 us) before its last beam.
+    CHECK(sc.first_beam_utime == sc.arrival_utime - 14640 - 20000);
+    CHECK(sc.time_increment_s == Approx(0.5 / 360.0 / 75.0));
+    CHECK(sc.sweep_period_s == Approx(1.0 / 75.0));
+    CHECK(to_string(sc.sweep_order) == "01");
     // Consecutive scans one period apart.
     const int64_t dt = h.scans.back().first_beam_utime - h.scans[h.scans.size() - 2].first_beam_utime;
     CHECK(std::abs(dt - 26667) <= 1);
@@ -140,7 +143,7 @@ TEST_CASE("38400 baud at 0.5 deg: the line limits the rate to about 5 Hz", "[sic
     // One scan per 8 periods (190.6 ms on the wire): 213 ms apart, 14 in 3 s.
     CHECK(h.scans.size() >= 13);
     CHECK(h.scans.size() <= 15);
-    CHECK(h.scans.back().first_beam_utime == h.scans.back().arrival_utime - 190625 - 26667);
+    CHECK(h.scans.back().first_beam_utime == h.scans.back().arrival_utime - 190625 - 20000);
 }
 
 TEST_CASE("cm units, 100 deg / 0.25 deg and the real-time scan index", "[sick_lms2xx][session]")

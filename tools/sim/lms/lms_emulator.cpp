@@ -223,6 +223,20 @@ void LmsDevice::handle(const lms::Telegram& t, int64_t now_us, int host_baud, By
     nak(host_baud, now_us, out);
 }
 
+bool set_sweep_order(DeviceOptions& options, const std::string& digits)
+{
+    const std::size_t n = digits.size();
+    if (n != 2 && n != 4) return false;
+    std::vector<int> order;
+    for (const char c : digits) {
+        const int d = c - '0';
+        if (d < 0 || d >= static_cast<int>(n) || std::find(order.begin(), order.end(), d) != order.end()) return false;
+        order.push_back(d);
+    }
+    (n == 2 ? options.sweep_order_05 : options.sweep_order_025) = order;
+    return true;
+}
+
 Bytes LmsDevice::make_scan(int64_t now_us)
 {
     const int n = lms::beams_per_scan(angle_deg_, resolution_cdeg_);
@@ -233,14 +247,13 @@ Bytes LmsDevice::make_scan(int64_t now_us)
                                                                      units(), 0, indexed ? 0 : -1, kReplyStatus)
                                                .size();
         // A pty has no line rate: the whole telegram reaches the host when it is sent
-        // (now_us, the scan's due time), which the host's model reads as its last byte
-        // arriving then, so the scan ended one transmission time (at the device's rate) before.
-        const double duration_us = lms::scan_period_s(resolution_cdeg_) * 1e6;
+        // (now_us, the scan's due time), which the host reads as its last byte arriving
+        // then, so the last beam was measured one transmission time (at the device's rate) before.
         const double tx_us = static_cast<double>(telegram_bytes) * 10.0 * 1e6 / baud_;
-        const double first_us = static_cast<double>(now_us) - tx_us - duration_us;
+        const double last_beam_us = static_cast<double>(now_us) - tx_us;
         for (int i = 0; i < n; ++i) {
             const double deg = -angle_deg_ / 2.0 + i * resolution_cdeg_ / 100.0;
-            const auto t = static_cast<int64_t>(std::llround(first_us + duration_us * i / std::max(1, n - 1)));
+            const auto t = static_cast<int64_t>(std::llround(beam_time_us(i, n, last_beam_us)));
             beam_ranges_[static_cast<std::size_t>(i)] = options_.beam_scene(deg * kPi / 180.0, t);
         }
     } else if (beam_ranges_.size() != static_cast<std::size_t>(n)) {
@@ -257,6 +270,24 @@ Bytes LmsDevice::make_scan(int64_t now_us)
     const int index = with_index ? static_cast<int>(scan_counter_ & 0xff) : -1;
     ++scan_counter_;
     return lms::encode_scan_telegram(values, u, 0, index, kReplyStatus);
+}
+
+double LmsDevice::beam_time_us(int i, int n, double last_beam_us) const
+{
+    const int sweeps = resolution_cdeg_ <= 25 ? 4 : resolution_cdeg_ <= 50 ? 2 : 1;
+    const double turn_us = 1e6 / 75.0;
+    if (options_.linear_timing) {
+        const double duration_us = sweeps * turn_us;
+        return last_beam_us - duration_us + duration_us * i / std::max(1, n - 1);
+    }
+    const std::vector<int>& order = sweeps == 4 ? options_.sweep_order_025 : options_.sweep_order_05;
+    int sweep = 0;
+    for (int k = 0; k < sweeps; ++k)
+        if (order[static_cast<std::size_t>(k)] == i % sweeps) sweep = k;
+    // The last sweep ends at the far edge of the field: its start is a field's crossing earlier.
+    const double last_sweep_start_us = last_beam_us - angle_deg_ * turn_us / 360.0;
+    const double angle_deg = i * resolution_cdeg_ / 100.0;
+    return last_sweep_start_us - (sweeps - 1 - sweep) * turn_us + angle_deg * turn_us / 360.0;
 }
 
 void LmsDevice::tick(int64_t now_us, int host_baud, Bytes& out)

@@ -41,8 +41,8 @@ using Scene = std::function<double(double angle_rad)>;
 Scene flat_floor_scene(double height_m, double pitch_rad);
 
 // A scene that moves (ugv-sim world): the range along the beam at angle_rad measured at
-// beam_utime. Asked for every beam of every scan, in beam order; the beam times follow the
-// model of docs/lms.md (first beam = last byte sent - transmission time - scan duration).
+// beam_utime. Asked for every beam of every scan, in beam order (not time order when the
+// scan is interlaced); the beam times follow the mirror (DeviceOptions::linear_timing).
 using BeamScene = std::function<double(double angle_rad, int64_t beam_utime)>;
 
 struct DeviceOptions
@@ -55,7 +55,18 @@ struct DeviceOptions
     bool initially_streaming = false;  // a device left streaming by a crashed host
     Variant variant = variants().front();  // what it answers to 3A/31/74 (lms_variants.hpp)
     std::string password = "SICK_LMS";
+    // Beam times. The mirror turns at 75 Hz and crosses the field in the first part of each
+    // turn (angle x 13.33 ms / 360 deg); at 0.5 deg a scan is 2 sweeps, at 0.25 deg 4, sweep
+    // k measuring the beams i with i mod S = order[k]. The scan is sent when its last beam is
+    // measured. linear_timing instead spreads the beams in angle order over the whole scan
+    // period, ending at the telegram (the model the driver used before; for comparison).
+    bool linear_timing = false;
+    std::vector<int> sweep_order_05{0, 1};
+    std::vector<int> sweep_order_025{0, 1, 2, 3};
 };
+// Parses an order such as "10" or "2031" (a permutation of 0..n-1, n = 2 or 4) into
+// options; false (options unchanged) if it is not one.
+bool set_sweep_order(DeviceOptions& options, const std::string& digits);
 
 struct DeviceStats
 {
@@ -99,6 +110,8 @@ private:
     void send(std::vector<uint8_t> bytes, int host_baud, int64_t now_us, std::vector<uint8_t>& out, bool is_telegram);
     bool silent(int64_t now_us) const;
     std::vector<uint8_t> make_scan(int64_t now_us);
+    // When beam i of n was measured, for a scan whose last beam was measured at last_beam_us.
+    double beam_time_us(int i, int n, double last_beam_us) const;
     // The scan that fell due at due_us, unless the line is still busy then.
     void send_scan(int64_t due_us, int host_baud, std::vector<uint8_t>& out);
 

@@ -107,10 +107,14 @@ std::string ServoPort::summary() const
     return "servo: " + std::to_string(frames_sent_) + " CAN frames from the drive";
 }
 
-LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed)
+LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed,
+                 const lms::DeviceOptions& timing)
     : DevicePort(link_path), rng_(seed)
 {
     lms::DeviceOptions o;
+    o.linear_timing = timing.linear_timing;
+    o.sweep_order_05 = timing.sweep_order_05;
+    o.sweep_order_025 = timing.sweep_order_025;
     o.seed = seed;
     const double noise_m = world.scenario().laser.range_noise_m;
     o.beam_scene = [&world, &tilt, noise_m, this](double angle_rad, int64_t beam_utime) {

@@ -72,7 +72,10 @@ private:
 class LmsPort : public DevicePort
 {
 public:
-    LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed);
+    // timing: the emulator's beam timing options (linear_timing, sweep orders); the rest of
+    // the device options come from the world.
+    LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed,
+            const lms::DeviceOptions& timing);
     std::size_t service(bool readable, int64_t now_utime) override;
     const lms::DeviceStats& stats() const { return device_->stats(); }
     std::string summary() const override;

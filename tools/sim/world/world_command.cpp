@@ -68,7 +68,7 @@ ugv::sim_truth_t truth_message(const sw::World& world, const sw::TruthState& s, 
 }
 
 int run(const std::string& dir, const std::string& scenario_toml, const std::string& scenario_file,
-        const std::string& url, double duration_s, uint32_t seed)
+        const std::string& url, double duration_s, uint32_t seed, const ugv::sim::lms::DeviceOptions& lms_timing)
 {
     ugv::runtime::Config cfg = ugv::runtime::Config::parse(scenario_toml, scenario_file);
     const sw::Scenario scenario = sw::parse_scenario(cfg);
@@ -89,7 +89,7 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
     if (scenario.devices.servo) {
         servo = std::make_unique<ServoPort>(dir + "/servo", scenario, now0, tilt);
     }
-    if (scenario.devices.lms) ports.push_back(std::make_unique<LmsPort>(dir + "/lms", world, tilt, seed));
+    if (scenario.devices.lms) ports.push_back(std::make_unique<LmsPort>(dir + "/lms", world, tilt, seed, lms_timing));
     if (scenario.devices.gps) ports.push_back(std::make_unique<GpsPort>(dir + "/gps", world, now0, seed + 1));
     if (scenario.devices.imu) ports.push_back(std::make_unique<ImuPort>(dir + "/imu", world, now0, seed + 2));
     write_file(dir + "/ready", "");
@@ -142,6 +142,13 @@ int world_main(int argc, char** argv)
         ->check(CLI::Range(0.0, 1e6));
     app.add_option("--seed", seed, "noise seed");
     app.add_flag("--print-scenario", print, "print the default scenario and exit");
+    std::string lms_timing = "interlaced";
+    std::vector<std::string> lms_orders;
+    app.add_option("--lms-timing", lms_timing, "the LMS's beam times: interlaced sweeps as the device does, or linear")
+        ->check(CLI::IsMember({"interlaced", "linear"}));
+    app.add_option("--lms-sweep-order", lms_orders,
+                   "beam phase measured by each LMS sweep: 2 digits for 0.5 deg (01, 10), 4 for 0.25 deg "
+                   "(e.g. 0123); repeatable");
     if (const auto status = ugv::sim::parse_command_line(app, argc, argv)) return *status;
     if (print) {
         std::fputs(ugv::simworld::default_scenario_toml(), stdout);
@@ -163,9 +170,17 @@ int world_main(int argc, char** argv)
         text = ss.str();
         name = scenario_path;
     }
+    ugv::sim::lms::DeviceOptions timing;
+    timing.linear_timing = lms_timing == "linear";
+    for (const std::string& o : lms_orders)
+        if (!ugv::sim::lms::set_sweep_order(timing, o)) {
+            std::fprintf(stderr, "%s: --lms-sweep-order: '%s' is not an order of 2 or 4 beam phases (e.g. 10, 0213)\n",
+                         argv[0], o.c_str());
+            return 2;
+        }
     ugv::runtime::install_stop_signals();
     try {
-        return run(dir, text, name, url, duration_s, seed);
+        return run(dir, text, name, url, duration_s, seed, timing);
     } catch (const ugv::runtime::ConfigError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;

@@ -22,6 +22,7 @@
 #include "ugv/sick_lms2xx/decoder.hpp"
 #include "ugv/sick_lms2xx/replies.hpp"
 #include "ugv/sick_lms2xx/scan.hpp"
+#include "ugv/sick_lms2xx/timing.hpp"
 
 namespace ugv::sick_lms2xx {
 
@@ -38,6 +39,8 @@ struct SessionConfig
     int attempts = 3;              // per request (probes use 2)
     int settle_ms = 300;           // quiet time after a baud change
     int silence_periods = 5;       // scan intervals without a scan before re-initialising
+    BeamTiming beam_timing = BeamTiming::interlaced;  // how beam times are modelled (timing.hpp)
+    std::string sweep_order;       // phase measured by each sweep ("" = natural); see timing.hpp
     int64_t backoff_initial_us = 100'000;
     int64_t backoff_max_us = 2'000'000;
 };
@@ -52,8 +55,10 @@ struct StampedScan
 {
     Scan scan;
     int64_t arrival_utime = 0;     // when the telegram's last byte arrived (unfiltered)
-    int64_t first_beam_utime = 0;  // see timing.hpp
+    int64_t first_beam_utime = 0;  // start of the first sweep; see timing.hpp
     double time_increment_s = 0.0;
+    double sweep_period_s = 0.0;
+    SweepOrder sweep_order;        // beam i: first_beam + sweep(i) * sweep_period + i * time_increment
     double scan_period_s = 0.0;
     double angle_min_rad = 0.0;
     double angle_increment_rad = 0.0;
@@ -172,6 +177,7 @@ private:
     bool streaming_ = false;
     int64_t last_scan_us_ = 0;
     int expected_beams_ = 0;
+    SweepOrder sweep_order_;
     // What transact() is waiting for.
     int awaiting_cmd_ = -1;
     bool got_ack_ = false, got_nak_ = false, got_reply_ = false, got_telegram_ = false;
