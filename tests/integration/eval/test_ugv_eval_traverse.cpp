@@ -76,12 +76,12 @@ std::vector<int8_t> oracle_classes(const simworld::HeightField& f, double ground
     return cls;
 }
 
-traversability_map_t trav_map(double ground, const std::vector<int8_t>& cls)
+// The stamp, the identity pose at (0, 0, ground) and the grid above, as both map types
+// name them.
+template <typename Map>
+void place(Map& m, double ground)
 {
-    traversability_map_t m{};
     m.utime = kUtime;
-    m.seq = 1;
-    m.map_seq = 7;
     m.pose.utime = kUtime;
     m.pose.orientation[0] = 1.0;
     m.pose.position[2] = ground;
@@ -90,6 +90,14 @@ traversability_map_t trav_map(double ground, const std::vector<int8_t>& cls)
     m.origin_x = kOriginX;
     m.origin_y = kOriginY;
     m.ncells = kN * kN;
+}
+
+traversability_map_t trav_map(double ground, const std::vector<int8_t>& cls)
+{
+    traversability_map_t m{};
+    place(m, ground);
+    m.seq = 1;
+    m.map_seq = 7;
     m.cell_class = cls;
     for (auto* layer : {&m.cost, &m.step_m, &m.drop_m, &m.slope_deg, &m.roughness_m, &m.span_m, &m.certainty})
         layer->assign(kN * kN, 0.0f);
@@ -138,16 +146,8 @@ void area(std::vector<int8_t>& cls, double x0, double y0, double x1, double y1, 
 terrain_map_t source_map(double ground, const std::vector<Box>& tops)
 {
     terrain_map_t t{};
-    t.utime = kUtime;
+    place(t, ground);
     t.seq = 7;
-    t.pose.utime = kUtime;
-    t.pose.orientation[0] = 1.0;
-    t.pose.position[2] = ground;
-    t.resolution = kCell;
-    t.nx = t.ny = kN;
-    t.origin_x = kOriginX;
-    t.origin_y = kOriginY;
-    t.ncells = kN * kN;
     for (auto* layer : {&t.mean_z, &t.max_z, &t.min_z}) layer->assign(kN * kN, static_cast<float>(ground));
     t.variance_z.assign(kN * kN, 1e-4f);
     t.age_s.assign(kN * kN, 0.0f);
