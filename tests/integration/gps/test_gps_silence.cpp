@@ -99,12 +99,14 @@ void check_round(Listener& l, const Capture& c, std::size_t from)
     }
 }
 
-std::unique_ptr<ugv::test::Process> start_gps(const TempDir& dir, const std::string& device, int port)
+// silence_timeout_s is the daemon's own "degraded after" key (the receiver's 1.25 s by
+// default with 0.25 s logs): at 0.25 s a silence of 0.75 s crosses it three times. Empty:
+// the default.
+std::unique_ptr<ugv::test::Process> start_gps(const TempDir& dir, const std::string& device, int port,
+                                              const std::string& silence_timeout_s = "0.25")
 {
-    // silence_timeout_s is the daemon's own "degraded after" key (the receiver's 1.25 s by
-    // default with 0.25 s logs): at 0.25 s a silence of 0.75 s crosses it three times.
-    ugv::test::write_file(dir / "gps.toml", "device = \"" + device +
-                                                "\"\nmode = \"passive\"\nprotocol = \"auto\"\nsilence_timeout_s = 0.25\n");
+    ugv::test::write_file(dir / "gps.toml", "device = \"" + device + "\"\nmode = \"passive\"\nprotocol = \"auto\"\n" +
+                                                (silence_timeout_s.empty() ? "" : "silence_timeout_s = " + silence_timeout_s + "\n"));
     return std::make_unique<ugv::test::Process>(std::vector<std::string>{ugv::test::bin("ugv-gps"), "--config", dir / "gps.toml",
                                                               "--lcm-url", ugv::test::lcm_url(port)},
                                      dir / "gps.out", dir / "gps.err");
@@ -157,6 +159,28 @@ TEST_CASE("ugv-gps: a real capture after silence is decoded whole, 20 times of 2
     CHECK(l.t.counter("open_failures") == 0);
     CHECK(l.t.saw_state(ugv::daemon_status_t::STATE_DEGRADED));
     CHECK(l.t.saw_state(ugv::daemon_status_t::STATE_RUNNING));
+    gps->signal(SIGTERM);
+    CHECK(gps->wait_exit(5.0) == 0);
+}
+
+TEST_CASE("ugv-gps: on its defaults, a capture after 5 s of silence is decoded whole, at the receiver's pace")
+{
+    // The reported condition itself, once: the default silence timeout, 5 s of silence, the
+    // capture at its own 20 Hz. The 20 repetitions are the case above.
+    const Capture c = load_capture();
+    TempDir dir;
+    ugv::io::Pty receiver(dir / "gps");
+    Listener l(7883);
+    auto gps = start_gps(dir, receiver.path(), 7883, "");
+    INFO("--- ugv-gps stderr:\n" << gps->err());
+    REQUIRE(l.wait([&] { return l.t.counter("silences") >= 1; }, 20.0));
+    l.wait([] { return false; }, 5.0);
+    REQUIRE(l.t.nfix() == 0);
+    send_capture(l, receiver.master_fd(), c, 1.0 / 20);
+    l.wait([&] { return l.t.nfix() >= kEpochs; }, 5.0);
+    CHECK(l.t.nfix() == kEpochs);
+    check_round(l, c, 0);
+    CHECK(l.t.counter("reconnects") == 0);
     gps->signal(SIGTERM);
     CHECK(gps->wait_exit(5.0) == 0);
 }
