@@ -7,8 +7,9 @@
 //       bit 5 RTR, [4..11] data
 // Checks, beyond "no crash":
 //  - every frame the session sends is a standard 11-bit frame with DLC <= 8;
-//  - every target position it sends in RPDO1 is inside the configured angle limits, or is
-//    the actual position a TPDO1 reported (the "hold where you are" target);
+//  - every target position it sends in an RPDO of its current plan is inside the configured
+//    angle limits, or is an actual position the drive reported (the "hold where you are"
+//    target), in a TPDO of the plan or an SDO upload of 0x6064;
 //  - every sample's state is the state its statusword shows, and its angle is finite;
 //  - a failed session says why;
 //  - the stateless decoders: SDO sizes within 0..4 bytes and values that fit them, and
@@ -16,7 +17,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <set>
+#include <vector>
 
 #include "ugv/canopen/drive.hpp"
 #include "ugv/canopen/emcy.hpp"
@@ -32,6 +35,19 @@ void require(bool ok)
 }
 
 bool fits(uint32_t value, int size) { return size >= 4 || value < (uint32_t{1} << (8 * size)); }
+
+// The value of object `index` in a frame of one of pdos (the plan's), if it carries it.
+std::optional<uint32_t> value_in(const std::vector<Plan::Pdo>& pdos, uint16_t index, uint8_t node,
+                                 const ugv::io::CanFrame& f)
+{
+    for (const Plan::Pdo& p : pdos) {
+        for (std::size_t k = 0; k < p.mapping.objects.size(); ++k) {
+            if (p.mapping.objects[k].index != index) continue;
+            if (auto v = unpack_pdo(p.mapping, node, f); v && k < v->size()) return (*v)[k];
+        }
+    }
+    return std::nullopt;
+}
 
 void check_stateless(const ugv::io::CanFrame& f, uint8_t node)
 {
@@ -60,8 +76,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     DriveConfig config;
     config.node_id = 5;
     Drive drive(config);
-    const PdoMapping rpdo1 = Drive::rpdo1();
-    const PdoMapping tpdo1 = Drive::tpdo1(config);
     const int32_t lowest = config.units.to_counts(config.min_angle_rad);
     const int32_t highest = config.units.to_counts(config.max_angle_rad);
     std::set<int32_t> reported_positions;
@@ -78,8 +92,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         f.rtr = (r[3] & 0x20) != 0;
         std::memcpy(f.data.data(), r + 4, 8);
         check_stateless(f, config.node_id);
-        if (auto v = unpack_pdo(tpdo1, config.node_id, f); v && !f.extended && !f.rtr) {
-            reported_positions.insert(static_cast<int32_t>((*v)[1]));
+        if (!f.extended && !f.rtr) {
+            if (auto v = value_in(drive.plan().tpdos, cia402::kPositionActual, config.node_id, f))
+                reported_positions.insert(static_cast<int32_t>(*v));
+            if (auto r = decode_sdo_response(f, config.node_id);
+                r && r->kind == SdoResponse::Kind::upload_data && r->at.index == cia402::kPositionActual)
+                reported_positions.insert(static_cast<int32_t>(r->value));
         }
         drive.on_frame(f, now_us, now_us);
         if (r[0] & 0x40) {
@@ -92,8 +110,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 
         for (const auto& out : drive.take_outgoing()) {
             require(!out.extended && out.id <= 0x7FF && out.dlc <= 8);
-            if (auto v = unpack_pdo(rpdo1, config.node_id, out)) {
-                const auto target = static_cast<int32_t>((*v)[0]);
+            if (auto v = value_in(drive.plan().rpdos, cia402::kTargetPosition, config.node_id, out)) {
+                const auto target = static_cast<int32_t>(*v);
                 require((target >= lowest && target <= highest) || reported_positions.count(target) == 1);
             }
         }
