@@ -265,17 +265,28 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
                     count += std::isnan(v) ? 0 : 1;
                 }
             }
-            // Two accumulators each (the sums are exact, so their order does not matter).
-            double sz[2] = {0, 0}, spz[2] = {0, 0}, sqz[2] = {0, 0};
-            for (std::size_t u = 0; u < count; ++u) {
-                const double v = win_v_[u];
-                sz[u & 1] += v;
-                spz[u & 1] += win_p_[u] * v;
-                sqz[u & 1] += win_q_[u] * v;
+            // Two accumulators each, in registers (the sums are exact, so their order does not
+            // matter).
+            double sz0 = 0, sz1 = 0, spz0 = 0, spz1 = 0, sqz0 = 0, sqz1 = 0;
+            std::size_t e = 0;
+            for (; e + 1 < count; e += 2) {
+                const double v0 = win_v_[e], v1 = win_v_[e + 1];
+                sz0 += v0;
+                sz1 += v1;
+                spz0 += win_p_[e] * v0;
+                spz1 += win_p_[e + 1] * v1;
+                sqz0 += win_q_[e] * v0;
+                sqz1 += win_q_[e + 1] * v1;
             }
-            m.sz = sz[0] + sz[1];
-            m.spz = spz[0] + spz[1];
-            m.sqz = sqz[0] + sqz[1];
+            if (e < count) {
+                const double v = win_v_[e];
+                sz0 += v;
+                spz0 += win_p_[e] * v;
+                sqz0 += win_q_[e] * v;
+            }
+            m.sz = sz0 + sz1;
+            m.spz = spz0 + spz1;
+            m.sqz = sqz0 + sqz1;
             const PlaneFit first = plane_from_moments(m, nullptr);
             // The second plane: without the points more than band off the first.
             for (std::size_t u = 0; u < count; ++u) {
