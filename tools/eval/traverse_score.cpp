@@ -221,9 +221,7 @@ void print_miss(std::FILE* out, const traversability_map_t& m, const PlacedClass
     static const char* const names[] = {"none", "traversable", "obstacle", "negative"};
     const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(m.ny) + static_cast<std::size_t>(j);
     auto layer = [&](const std::vector<float>& v) {
-        char buf[32] = "null";
-        if (v.size() == m.cell_class.size() && std::isfinite(v[k])) std::snprintf(buf, sizeof buf, "%.3f", double(v[k]));
-        return std::string(buf);
+        return number(v.size() == m.cell_class.size() ? double(v[k]) : std::numeric_limits<double>::quiet_NaN());
     };
     std::fprintf(out,
                  "{\"map_seq\": %lld, \"what\": \"%s\", \"i\": %d, \"j\": %d, \"x\": %.2f, \"y\": %.2f, "
