@@ -2,17 +2,13 @@
 
 #include <numbers>
 
+#include "ugv/nodscan/mount_config.hpp"
 #include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::nodscan_daemon {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-Eigen::Vector3d vec3(const std::vector<double>& v, double scale = 1.0)
-{
-    return Eigen::Vector3d(v[0] * scale, v[1] * scale, v[2] * scale);
-}
 
 }  // namespace
 
@@ -30,10 +26,7 @@ NodscanConfig read_config(runtime::Config& cfg)
     c.servo_history_us = cfg.get_int("servo_history_ms", 2000, 100, 60000) * 1000;
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
     runtime::Config m = cfg.section("mount");
-    c.assembler.mount.axis_xyz_m = vec3(m.get_doubles("tilt_axis_xyz_m", {0.0, 0.0, 0.87}, 3, -10.0, 10.0));
-    c.assembler.mount.axis_rpy_rad = vec3(m.get_doubles("tilt_axis_rpy_deg", {0.0, 0.0, 0.0}, 3, -180.0, 180.0), kDeg);
-    c.assembler.mount.laser_xyz_m = vec3(m.get_doubles("laser_xyz_m", {0.0, 0.0, 0.0}, 3, -2.0, 2.0));
-    c.assembler.mount.laser_rpy_rad = vec3(m.get_doubles("laser_rpy_deg", {0.0, 0.0, 0.0}, 3, -180.0, 180.0), kDeg);
+    c.assembler.mount = nodscan::read_mount(m);
     if (c.servo_history_us < 2 * c.max_wait_us)
         cfg.fail("servo_history_ms", "must be at least twice max_wait_ms, or a waiting scan loses its angles");
     return c;
