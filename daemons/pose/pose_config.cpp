@@ -66,16 +66,21 @@ PoseConfig read_config(runtime::Config& cfg)
     e.datum_min_quality = read_quality(cfg, "datum_min_quality", "single");
     e.min_fix_quality = read_quality(cfg, "min_fix_quality", "single");
 
-    const double rate_hz = cfg.get_double("rate_hz", 10.0, 0.1, 100.0);
+    // "imu": a pose right after each IMU sample (at most rate_hz), the freshest state;
+    // "grid": at each multiple of the period, by prediction.
+    e.pose_times = cfg.get_enum("pose_times", "imu", {"imu", "grid"}) == "imu" ? estimation::PoseTimes::imu
+                                                                                : estimation::PoseTimes::grid;
+    const double rate_hz = cfg.get_double("rate_hz", 100.0, 0.1, 100.0);
     e.output_period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
-    // The window must hold the oldest input on arrival: a NovAtel velocity is stamped its
-    // latency (0.15 s) before the epoch and reaches the host after BESTPOS and BESTVEL have
-    // crossed the line (0.19 s at 9600 baud). At 0.15 s ugv-pose dropped them as late.
-    e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.4, 0.0, 2.0));
+    // Late inputs (a NovAtel velocity arrives ~0.34 s after its stamp on a 9600-baud line) are
+    // applied from the history; a reorder window would only delay every pose by its length.
+    e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.0, 0.0, 2.0));
+    e.history_size = static_cast<std::size_t>(cfg.get_int("history_size", 100, 0, 10'000));
+    e.max_ahead_us = seconds_to_us(cfg.get_double("max_ahead_of_newest_s", 0.5, 0.001, 3600.0));
 
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
-    // Older than this is older than anything the filter can still use: an input is applied
-    // within buffer_s of the newest, and delivery (batching, a busy CPU) adds a little.
+    // Older than this is older than anything the filter can still use (the history spans
+    // ~1-2 s of inputs), with room for delivery (batching, a busy CPU).
     c.max_stamp_age_us = seconds_to_us(cfg.get_double("max_stamp_age_s", 2.0, 0.01, 3600.0));
     if (c.max_stamp_age_us < e.buffer_us) cfg.fail("max_stamp_age_s", "must be at least buffer_s");
 

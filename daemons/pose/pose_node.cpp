@@ -1,12 +1,15 @@
 #include "pose_node.hpp"
 
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include "pose_messages.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/daemon/input_stamps.hpp"
 #include "ugv/estimation/pose_estimator.hpp"
+#include "ugv/io/clock.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/rate_limited_log.hpp"
 
 namespace ugv::pose_daemon {
 namespace {
@@ -43,6 +46,26 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
     const int fix_input = stamps.add_input(cfg.gps_fix_channel);
     const int velocity_input = stamps.add_input(cfg.gps_velocity_channel);
     const int imu_input = stamps.add_input(cfg.imu_channel);
+    // An input the estimator could not apply at its own time is said once (then every 5 s).
+    runtime::RateLimitedLog drop_log;
+    estimation::EstimatorCounters seen = estimator.counters();
+    const auto log_drops = [&](const std::string& channel, int64_t utime) {
+        const estimation::EstimatorCounters& now = estimator.counters();
+        if (now.late != seen.late) {
+            drop_log.log(spdlog::level::warn, "late",
+                         fmt::format("{} stamped {} dropped: older than the history of {} inputs (history_size); "
+                                     "late counts them",
+                                     channel, utime, cfg.estimator.history_size),
+                         io::monotonic_us());
+        } else if (now.ahead != seen.ahead) {
+            drop_log.log(spdlog::level::warn, "ahead",
+                         fmt::format("{} stamped {} dropped: more than max_ahead_of_newest_s ({} s) after the newest "
+                                     "input; ahead counts them",
+                                     channel, utime, static_cast<double>(cfg.estimator.max_ahead_us) * 1e-6),
+                         io::monotonic_us());
+        }
+        seen = now;
+    };
     const auto publish_poses = [&] {
         for (const estimation::PoseEstimate& p : estimator.take_poses()) {
             bus::publish(d.out(), cfg.channel, to_message(p, seq++));
@@ -70,22 +93,28 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
     bus::subscribe<gps_fix_t>(d.bus(), cfg.gps_fix_channel, [&](const std::string&, const gps_fix_t& m, int64_t) {
         if (!stamps.accept(fix_input, m.utime)) return;
         estimator.add(to_fix(m));
+        log_drops(cfg.gps_fix_channel, m.utime);
         publish_poses();
     });
     bus::subscribe<gps_velocity_t>(d.bus(), cfg.gps_velocity_channel,
                                    [&](const std::string&, const gps_velocity_t& m, int64_t) {
                                        if (!stamps.accept(velocity_input, m.utime)) return;
                                        estimator.add(to_velocity(m));
+                                       log_drops(cfg.gps_velocity_channel, m.utime);
                                        publish_poses();
                                    });
     bus::subscribe<imu_t>(d.bus(), cfg.imu_channel, [&](const std::string&, const imu_t& m, int64_t) {
         if (!stamps.accept(imu_input, m.utime)) return;
         estimator.add(to_imu(m));
+        log_drops(cfg.imu_channel, m.utime);
         publish_poses();
     });
 
-    spdlog::info("fusing {} + {} + {} -> {} every {} us ({})", cfg.gps_fix_channel, cfg.gps_velocity_channel,
-                 cfg.imu_channel, cfg.channel, cfg.estimator.output_period_us,
+    spdlog::info("fusing {} + {} + {} -> {} {} {} us, late inputs from a history of {} ({})", cfg.gps_fix_channel,
+                 cfg.gps_velocity_channel, cfg.imu_channel, cfg.channel,
+                 cfg.estimator.pose_times == estimation::PoseTimes::imu ? "after each IMU sample, at most every"
+                                                                          : "every",
+                 cfg.estimator.output_period_us, cfg.estimator.history_size,
                  cfg.estimator.datum ? "configured datum" : "datum from the first fix");
     const int rc = d.run();
     if (d.replaying()) {

@@ -16,7 +16,9 @@ TerrainConfig read_config(runtime::Config& cfg)
     c.pose_channel = cfg.get_channel_regex("pose_channel", c.pose_channel);
     c.map_channel = cfg.get_channel("map_channel", c.map_channel);
     c.publish_hz = cfg.get_double("publish_hz", 2.0, 0.1, 20.0);
-    c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 1.0, 0.0, 5.0) * 1e6));
+    // ugv-pose publishes after each IMU sample; with the IMU silent, at each GPS input (~0.35 s
+    // behind at worst). Waiting longer only holds clouds back once the poses have stopped.
+    c.max_point_wait_us = static_cast<int64_t>(std::llround(cfg.get_double("max_point_wait_s", 0.5, 0.0, 5.0) * 1e6));
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0) * 1e6));
     // Under systemd, StateDirectory= gives a writable folder (STATE_DIRECTORY, the first of a
     // colon-separated list); elsewhere the map is kept only when a path is configured.

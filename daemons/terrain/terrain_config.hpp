@@ -15,7 +15,7 @@ struct TerrainConfig
     std::string pose_channel = "POSE";
     std::string map_channel = "TERRAIN_MAP";
     double publish_hz = 2.0;                   // on message time
-    int64_t max_point_wait_us = 1'000'000;       // how long a cloud waits for a pose after it
+    int64_t max_point_wait_us = 500'000;         // how long a cloud waits for a pose after it
     int64_t health_timeout_us = 2'000'000;
     // Restarts: where the map is kept ("" = not kept) and how often it is saved (wall time).
     std::string map_file;

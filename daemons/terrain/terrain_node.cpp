@@ -27,7 +27,7 @@ namespace {
 constexpr float kMaxCloudSpanS = 10.0f;
 constexpr std::size_t kRecentClouds = 64;  // per sensor, for duplicates: ~2 s of scans
 constexpr std::size_t kMaxSensors = 16;     // a vehicle has a few lasers
-// Clouds lead the pose by the pose's reorder buffer and a scan (~0.2 s). One stamped far
+// Clouds lead the pose by an IMU period and a scan (~40 ms). One stamped far
 // ahead would wait at the head of the queue for a pose that never comes, holding back every
 // cloud behind it, and would push the publishing clock into the future: it is rejected.
 constexpr int64_t kMaxCloudLeadUs = 5'000'000;

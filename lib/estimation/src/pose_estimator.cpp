@@ -39,6 +39,8 @@ void EstimatorConfig::validate() const
 {
     require(output_period_us > 0, "output_period_us must be > 0");
     require(buffer_us >= 0, "buffer_us must be >= 0");
+    require(history_size <= 100'000, "history_size must be <= 100000");
+    require(max_ahead_us > 0 && max_ahead_us <= 3'600'000'000, "max_ahead_us must be in (0, 3600 s]");
     require(positive(process.accel) && positive(process.gyro) && positive(process.heading_offset),
             "process noise densities must be > 0");
     require(positive(imu_orientation_sigma_rad), "imu_orientation_sigma_rad must be > 0");
@@ -104,31 +106,60 @@ std::vector<PoseEstimate> PoseEstimator::take_poses()
     return out;
 }
 
+namespace {
+
+// Ordered by (utime, kind, arrival): equal stamps apply IMU first, then fix, then velocity,
+// whatever order they arrived in, so the result does not depend on transport.
+template <class Event>
+bool sorts_before(const Event& a, const Event& b)
+{
+    if (a.utime != b.utime) {
+        return a.utime < b.utime;
+    }
+    if (a.data.index() != b.data.index()) {
+        return a.data.index() < b.data.index();
+    }
+    return a.arrival < b.arrival;
+}
+
+}  // namespace
+
+bool PoseEstimator::ahead_of_newest(int64_t utime)
+{
+    // Stamps are below 2^62 (input_checks) and max_ahead_us is bounded: no overflow.
+    const bool ahead = newest_utime_ > 0 && utime > newest_utime_ + config_.max_ahead_us;
+    if (!ahead) {
+        refused_ahead_ = false;
+        return false;
+    }
+    if (refused_ahead_) {
+        // The input after one refused is ahead as well: every input says time moved on (the
+        // inputs resume after a gap), so it is taken.
+        refused_ahead_ = false;
+        return false;
+    }
+    refused_ahead_ = true;
+    ++counters_.ahead;
+    return true;
+}
+
 void PoseEstimator::enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVelocity> data)
 {
-    if (utime < applied_utime_) {
-        ++counters_.late;
+    if (ahead_of_newest(utime)) {
         return;
     }
     Event e{utime, arrivals_++, std::move(data)};
-    // Ordered by (utime, kind, arrival): equal stamps apply IMU first, then fix, then
-    // velocity, whatever order they arrived in, so the result does not depend on transport.
-    const auto before = [](const Event& a, const Event& b) {
-        if (a.utime != b.utime) {
-            return a.utime < b.utime;
-        }
-        if (a.data.index() != b.data.index()) {
-            return a.data.index() < b.data.index();
-        }
-        return a.arrival < b.arrival;
-    };
-    const auto pos = std::upper_bound(buffer_.begin(), buffer_.end(), e, before);
+    if (utime < c_.applied_utime) {
+        apply_late(std::move(e));
+        return;
+    }
+    const auto pos = std::upper_bound(buffer_.begin(), buffer_.end(), e, sorts_before<Event>);
     // A second input of the same kind with the same measurement time is the same measurement
     // delivered twice (a re-sent or looped-back message): applying it again would count its
     // information twice and make the covariance overconfident.
     const bool buffered_twin =
         pos != buffer_.begin() && std::prev(pos)->utime == utime && std::prev(pos)->data.index() == e.data.index();
-    if (buffered_twin || applied_utime_by_kind_[e.data.index()] == utime) {
+    if (buffered_twin || c_.applied_utime_by_kind[e.data.index()] == utime) {
         ++counters_.duplicates;
         return;
     }
@@ -140,96 +171,149 @@ void PoseEstimator::enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVe
     release(newest_utime_ - config_.buffer_us);
 }
 
+void PoseEstimator::apply_late(Event e)
+{
+    // The first kept input that comes after e: e goes just before it, on the state the
+    // input before it left.
+    const auto after = std::upper_bound(history_.begin(), history_.end(), e,
+                                        [](const Event& x, const Applied& a) { return sorts_before(x, a.input); });
+    if (after == history_.begin()) {
+        ++counters_.late;  // no state from before it is kept
+        return;
+    }
+    const Applied& prev = *std::prev(after);
+    if (prev.input.utime == e.utime && prev.input.data.index() == e.data.index()) {
+        ++counters_.duplicates;
+        return;
+    }
+    ++counters_.reordered;
+    const auto at = static_cast<std::size_t>(after - history_.begin());
+    c_ = prev.after;
+    apply(e);
+    // The inputs after it were counted when they first came: applied again, not counted again
+    // (poses are: only those not produced before come out).
+    EstimatorCounters counted = counters_;
+    history_.insert(history_.begin() + static_cast<std::ptrdiff_t>(at), Applied{std::move(e), c_});
+    for (std::size_t i = at + 1; i < history_.size(); ++i) {
+        apply(history_[i].input);
+        history_[i].after = c_;
+    }
+    counted.poses = counters_.poses;
+    counted.outages = counters_.outages;
+    counters_ = counted;
+    while (history_.size() > config_.history_size) {
+        history_.pop_front();
+    }
+}
+
 void PoseEstimator::release(int64_t up_to_utime)
 {
     while (!buffer_.empty() && buffer_.front().utime <= up_to_utime) {
-        const Event e = std::move(buffer_.front());
+        Event e = std::move(buffer_.front());
         buffer_.pop_front();
         apply(e);
+        if (config_.history_size > 0) {
+            history_.push_back(Applied{std::move(e), c_});
+            if (history_.size() > config_.history_size) {
+                history_.pop_front();
+            }
+        }
     }
 }
 
 void PoseEstimator::apply(const Event& e)
 {
-    applied_utime_ = e.utime;
-    applied_utime_by_kind_[e.data.index()] = e.utime;
-    if (initialized_ && e.utime - filter_utime_ > config_.gps_reset_after_us) {
-        initialized_ = false;
-        heading_observed_ = false;
+    c_.applied_utime = e.utime;
+    c_.applied_utime_by_kind[e.data.index()] = e.utime;
+    if (c_.initialized && e.utime - c_.filter_utime > config_.gps_reset_after_us) {
+        c_.initialized = false;
+        c_.heading_observed = false;
         ++counters_.input_gaps;
     }
-    if (initialized_) {
+    if (c_.initialized) {
         advance_to(e.utime);
     }
-    if (const auto* imu = std::get_if<ImuSample>(&e.data)) {
+    const auto* imu = std::get_if<ImuSample>(&e.data);
+    if (imu) {
         apply_imu(*imu);
     } else if (const auto* fix = std::get_if<GpsFix>(&e.data)) {
         apply_fix(*fix);
     } else if (const auto* vel = std::get_if<GpsVelocity>(&e.data)) {
         apply_velocity(*vel);
     }
-    if (initialized_ && !filter_.healthy()) {
+    // With the IMU silent, the GPS inputs carry the (dead-reckoned, DEGRADED) pose on.
+    const bool imu_stale = !c_.last_imu || e.utime - c_.last_imu->utime > config_.imu_timeout_us;
+    if (config_.pose_times == PoseTimes::imu && c_.initialized && (imu || imu_stale) &&
+        e.utime >= c_.next_output_utime) {
+        emit(e.utime);
+        const int64_t period = config_.output_period_us;
+        c_.next_output_utime = (e.utime / period + 1) * period;
+    }
+    if (c_.initialized && !c_.filter.healthy()) {
         // A non-finite state cannot recover by itself: start again from the next fix.
-        initialized_ = false;
-        heading_observed_ = false;
+        c_.initialized = false;
+        c_.heading_observed = false;
         ++counters_.filter_resets;
     }
 }
 
 void PoseEstimator::advance_to(int64_t utime)
 {
-    while (next_output_utime_ <= utime) {
-        predict_to(next_output_utime_);
-        emit(next_output_utime_);
-        next_output_utime_ += config_.output_period_us;
+    while (config_.pose_times == PoseTimes::grid && c_.next_output_utime <= utime) {
+        predict_to(c_.next_output_utime);
+        emit(c_.next_output_utime);
+        c_.next_output_utime += config_.output_period_us;
     }
     predict_to(utime);
 }
 
 void PoseEstimator::predict_to(int64_t utime)
 {
-    if (utime <= filter_utime_) {
+    if (utime <= c_.filter_utime) {
         return;
     }
     // The IMU sample last applied is held over the interval (zero-order hold). Without a
     // recent one the vehicle keeps its velocity and attitude.
-    const Matrix3d r = filter_.state().attitude.toRotationMatrix();
+    const Matrix3d r = c_.filter.state().attitude.toRotationMatrix();
     Vector3d rate = Vector3d::Zero();
     Vector3d force = r.transpose() * Vector3d(0.0, 0.0, ErrorStateFilter::kGravity);
-    if (last_imu_ && filter_utime_ - last_imu_->utime <= config_.imu_timeout_us) {
-        if (last_imu_->has_rate) {
-            rate = last_imu_->rate_rps;
+    if (c_.last_imu && c_.filter_utime - c_.last_imu->utime <= config_.imu_timeout_us) {
+        if (c_.last_imu->has_rate) {
+            rate = c_.last_imu->rate_rps;
         }
-        if (last_imu_->has_accel) {
-            force = last_imu_->accel_mps2;
+        if (c_.last_imu->has_accel) {
+            force = c_.last_imu->accel_mps2;
         }
     }
-    double remaining = static_cast<double>(utime - filter_utime_) * 1e-6;
+    double remaining = static_cast<double>(utime - c_.filter_utime) * 1e-6;
     while (remaining > 0.0) {
         const double dt = std::min(remaining, kMaxStepS);
-        filter_.predict(dt, rate, force, config_.process);
+        c_.filter.predict(dt, rate, force, config_.process);
         remaining -= dt;
     }
-    filter_utime_ = utime;
+    c_.filter_utime = utime;
 }
 
 void PoseEstimator::emit(int64_t utime)
 {
-    if (!filter_.healthy()) {
+    // Re-applying inputs after a late one passes times already published: a pose once out is
+    // not revised (a consumer keeps poses in time order), the next one carries the correction.
+    if (!c_.filter.healthy() || utime <= emitted_utime_) {
         return;
     }
-    const bool outage = utime - last_fix_used_utime_ > config_.gps_timeout_us;
+    emitted_utime_ = utime;
+    const bool outage = utime - c_.last_fix_used_utime > config_.gps_timeout_us;
     if (outage && !in_outage_) {
         ++counters_.outages;
     }
     in_outage_ = outage;
-    const bool imu_stale = !last_imu_ || utime - last_imu_->utime > config_.imu_timeout_us;
+    const bool imu_stale = !c_.last_imu || utime - c_.last_imu->utime > config_.imu_timeout_us;
 
-    const NominalState& s = filter_.state();
-    const ErrorStateFilter::Covariance& P = filter_.covariance();
+    const NominalState& s = c_.filter.state();
+    const ErrorStateFilter::Covariance& P = c_.filter.covariance();
     PoseEstimate out;
     out.utime = utime;
-    out.status = (outage || imu_stale || !heading_observed_) ? PoseStatus::degraded : PoseStatus::ok;
+    out.status = (outage || imu_stale || !c_.heading_observed) ? PoseStatus::degraded : PoseStatus::ok;
     out.position = s.position;
     out.velocity = s.velocity;
     out.orientation = s.attitude;
@@ -237,8 +321,8 @@ void PoseEstimator::emit(int64_t utime)
     out.roll = e.roll;
     out.pitch = e.pitch;
     out.yaw = e.yaw;
-    if (last_imu_ && last_imu_->has_rate && !imu_stale) {
-        out.rotation_rate = last_imu_->rate_rps;
+    if (c_.last_imu && c_.last_imu->has_rate && !imu_stale) {
+        out.rotation_rate = c_.last_imu->rate_rps;
     }
     out.position_covariance = P.block<3, 3>(ErrorStateFilter::kP, ErrorStateFilter::kP);
     out.velocity_covariance = P.block<3, 3>(ErrorStateFilter::kV, ErrorStateFilter::kV);
@@ -248,7 +332,7 @@ void PoseEstimator::emit(int64_t utime)
     out.error_covariance = P;
     out.heading_offset = s.heading_offset;
     out.heading_offset_sigma = std::sqrt(P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset));
-    out.heading_observed = heading_observed_;
+    out.heading_observed = c_.heading_observed;
     out.gps_outage = outage;
     out.datum = frame_->datum();
     poses_.push_back(out);
@@ -272,15 +356,15 @@ Matrix3d PoseEstimator::fix_covariance(const GpsFix& f) const
 void PoseEstimator::apply_imu(const ImuSample& s)
 {
     if (s.has_orientation) {
-        last_orientation_ = s;
-        if (initialized_) {
+        c_.last_orientation = s;
+        if (c_.initialized) {
             const double sigma = imu_sigma(s);
-            const UpdateResult r = filter_.update_imu_orientation(
+            const UpdateResult r = c_.filter.update_imu_orientation(
                 s.orientation.normalized(), Matrix3d::Identity() * sigma * sigma, config_.gate_orientation_chi2);
             ++(r.applied ? counters_.imu_used : counters_.imu_rejected);
         }
     }
-    last_imu_ = s;
+    c_.last_imu = s;
 }
 
 void PoseEstimator::apply_fix(const GpsFix& f)
@@ -298,37 +382,37 @@ void PoseEstimator::apply_fix(const GpsFix& f)
     }
     const Vector3d antenna = frame_->to_enu(f.latitude_deg, f.longitude_deg, f.height_m);
     const Matrix3d cov = fix_covariance(f);
-    if (!initialized_) {
-        if (last_orientation_) {
+    if (!c_.initialized) {
+        if (c_.last_orientation) {
             initialize(f, antenna, cov);
         }
         return;
     }
     const UpdateResult r =
-        filter_.update_position(antenna, cov, config_.gps_antenna_body_m, config_.gate_position_chi2);
+        c_.filter.update_position(antenna, cov, config_.gps_antenna_body_m, config_.gate_position_chi2);
     if (r.applied) {
         ++counters_.gps_used;
-        last_fix_used_utime_ = f.utime;
+        c_.last_fix_used_utime = f.utime;
         return;
     }
     ++counters_.gps_rejected;
-    if (f.utime - last_fix_used_utime_ > config_.gps_reset_after_us) {
+    if (f.utime - c_.last_fix_used_utime > config_.gps_reset_after_us) {
         // Every fix for this long disagreed with the filter: the filter, not the receiver,
         // is the one that is wrong (e.g. after a long outage with a drifting prediction).
-        filter_.reset_position(antenna - filter_.state().attitude * config_.gps_antenna_body_m, cov);
+        c_.filter.reset_position(antenna - c_.filter.state().attitude * config_.gps_antenna_body_m, cov);
         ++counters_.gps_resets;
-        last_fix_used_utime_ = f.utime;
+        c_.last_fix_used_utime = f.utime;
     }
 }
 
 void PoseEstimator::initialize(const GpsFix& f, const Vector3d& antenna, const Matrix3d& cov)
 {
     NominalState s;
-    s.attitude = last_orientation_->orientation.normalized();
+    s.attitude = c_.last_orientation->orientation.normalized();
     s.position = antenna - s.attitude * config_.gps_antenna_body_m;
     s.velocity = Vector3d::Zero();
     s.heading_offset = 0.0;  // the IMU's yaw is taken as true until the course is seen
-    const double imu_var = std::pow(imu_sigma(*last_orientation_), 2);
+    const double imu_var = std::pow(imu_sigma(*c_.last_orientation), 2);
     const double yaw_var = std::pow(config_.initial_heading_sigma_rad, 2);
     const double vel_var = std::pow(config_.initial_velocity_sigma_mps, 2);
     ErrorStateFilter::Covariance P = ErrorStateFilter::Covariance::Zero();
@@ -341,22 +425,22 @@ void PoseEstimator::initialize(const GpsFix& f, const Vector3d& antenna, const M
     P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset) = yaw_var + imu_var;
     P(ErrorStateFilter::kTheta + 2, ErrorStateFilter::kOffset) = -yaw_var;
     P(ErrorStateFilter::kOffset, ErrorStateFilter::kTheta + 2) = -yaw_var;
-    filter_.reset(s, P);
+    c_.filter.reset(s, P);
 
-    initialized_ = true;
-    heading_observed_ = false;
+    c_.initialized = true;
+    c_.heading_observed = false;
     in_outage_ = false;
-    filter_utime_ = f.utime;
-    last_fix_used_utime_ = f.utime;
+    c_.filter_utime = f.utime;
+    c_.last_fix_used_utime = f.utime;
     ++counters_.gps_used;
     // The first output is the first multiple of the period after the fix.
     const int64_t period = config_.output_period_us;
-    next_output_utime_ = (f.utime / period + 1) * period;
+    c_.next_output_utime = (f.utime / period + 1) * period;
 }
 
 void PoseEstimator::apply_velocity(const GpsVelocity& v)
 {
-    if (!initialized_) {
+    if (!c_.initialized) {
         return;
     }
     const double speed = v.horizontal_speed_mps;
@@ -364,19 +448,19 @@ void PoseEstimator::apply_velocity(const GpsVelocity& v)
     if (speed >= config_.course_min_speed_mps) {
         double course = geometry::enu_yaw_from_track(v.track_rad);
         const double var = std::pow(config_.course_sigma_rad, 2) + std::pow(sv / speed, 2);
-        if (!heading_observed_) {
+        if (!c_.heading_observed) {
             // First sight of the true heading: assume the vehicle drives forward.
-            const double imu_var = last_orientation_ ? std::pow(imu_sigma(*last_orientation_), 2)
+            const double imu_var = c_.last_orientation ? std::pow(imu_sigma(*c_.last_orientation), 2)
                                                      : std::pow(config_.imu_orientation_sigma_rad, 2);
-            filter_.align_heading(course, var, imu_var);
-            heading_observed_ = true;
+            c_.filter.align_heading(course, var, imu_var);
+            c_.heading_observed = true;
             ++counters_.course_used;
         } else {
-            const double yaw = geometry::euler_from_quaternion(filter_.state().attitude).yaw;
+            const double yaw = geometry::euler_from_quaternion(c_.filter.state().attitude).yaw;
             if (std::cos(course - yaw) < 0.0) {
                 course = geometry::wrap_angle(course + std::numbers::pi);  // reversing
             }
-            const UpdateResult r = filter_.update_yaw(course, var, config_.gate_course_chi2);
+            const UpdateResult r = c_.filter.update_yaw(course, var, config_.gate_course_chi2);
             ++(r.applied ? counters_.course_used : counters_.course_rejected);
         }
     }
@@ -384,7 +468,7 @@ void PoseEstimator::apply_velocity(const GpsVelocity& v)
     const Vector3d enu(speed * std::sin(v.track_rad), speed * std::cos(v.track_rad),
                        horizontal_only ? 0.0 : v.vertical_speed_mps);
     const UpdateResult r =
-        filter_.update_velocity(enu, Matrix3d::Identity() * sv * sv, horizontal_only, config_.gate_velocity_chi2);
+        c_.filter.update_velocity(enu, Matrix3d::Identity() * sv * sv, horizontal_only, config_.gate_velocity_chi2);
     ++(r.applied ? counters_.velocity_used : counters_.velocity_rejected);
 }
 

@@ -210,7 +210,8 @@ std::vector<ugv::pose_t> read_poses(const fs::path& path)
 void write_config(const fs::path& path, const std::string& extra = "")
 {
     std::ofstream f(path);
-    f << "rate_hz = 10\n"
+    f << "pose_times = \"grid\"\n"
+         "rate_hz = 10\n"
          "accel_noise = 0.05\n"
          "gyro_noise = 0.005\n"
          "gps_velocity_sigma_mps = 0.05\n"

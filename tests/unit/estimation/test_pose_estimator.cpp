@@ -244,14 +244,15 @@ TEST_CASE("inputs out of order within the buffer give the same poses; too late o
         REQUIRE(same_bits(poses[i], reference[i]));
     }
 
-    // One fix 1 s old arriving now is refused and counted, and changes nothing.
+    // One fix 3 s old arriving now (older than the 100 inputs kept) is refused and counted,
+    // and changes nothing.
     PoseEstimator late(matched_config(noise));
     int64_t injected_at = 0;
     for (const Input& in : run.inputs) {
         feed(late, in);
         if (injected_at == 0 && seconds(run, utime_of(in)) > 10.0) {
             GpsFix old = std::get<GpsFix>(run.inputs[1]);  // from t = 3 ms
-            old.utime = utime_of(in) - 1'000'000;
+            old.utime = utime_of(in) - 3'000'000;
             late.add(old);
             injected_at = old.utime;
         }
@@ -429,4 +430,203 @@ TEST_CASE("a gap in the inputs longer than gps_reset_after_us is not predicted a
         CHECK(in_gap == 0);
         CHECK(after.back().utime > last + gap_us);
     }
+}
+
+namespace {
+
+// The estimator as ugv-pose runs it: no reorder window, a pose after each IMU sample, late
+// inputs applied from the history.
+EstimatorConfig prompt_config(const Noise& noise)
+{
+    EstimatorConfig c = matched_config(noise);
+    c.buffer_us = 0;
+    c.pose_times = PoseTimes::imu;
+    c.output_period_us = 10'000;
+    c.history_size = 100;
+    return c;
+}
+
+// The inputs in the order they arrive when each GPS message after the first fix comes its
+// delay after its stamp (behind the IMU samples measured meanwhile).
+std::vector<Input> gps_delayed(const std::vector<Input>& inputs, int64_t fix_delay_us, int64_t velocity_delay_us)
+{
+    std::vector<std::pair<int64_t, Input>> delivery;
+    bool first_fix = true;
+    for (const Input& in : inputs) {
+        int64_t delay = 0;
+        if (std::holds_alternative<GpsFix>(in)) {
+            delay = first_fix ? 0 : fix_delay_us;
+            first_fix = false;
+        } else if (std::holds_alternative<GpsVelocity>(in)) {
+            delay = velocity_delay_us;
+        }
+        delivery.emplace_back(utime_of(in) + delay, in);
+    }
+    std::stable_sort(delivery.begin(), delivery.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<Input> out;
+    for (auto& [when, in] : delivery) out.push_back(std::move(in));
+    return out;
+}
+
+void check_same_state(const PoseEstimator& a, const PoseEstimator& b)
+{
+    const NominalState& x = a.filter().state();
+    const NominalState& y = b.filter().state();
+    CHECK((x.position - y.position).norm() < 1e-9);
+    CHECK((x.velocity - y.velocity).norm() < 1e-9);
+    CHECK(x.attitude.angularDistance(y.attitude) < 1e-12);
+    CHECK(std::fabs(x.heading_offset - y.heading_offset) < 1e-12);
+    CHECK((a.filter().covariance() - b.filter().covariance()).cwiseAbs().maxCoeff() < 1e-12);
+}
+
+}  // namespace
+
+TEST_CASE("a pose after each IMU sample, on its stamp, as soon as the sample is applied")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 5.0, 11);
+    PoseEstimator est(prompt_config(noise));
+    std::size_t imu_after_init = 0;
+    for (const Input& in : run.inputs) {
+        feed(est, in);
+        if (const auto* s = std::get_if<ImuSample>(&in); s && est.initialized()) {
+            // Nothing waits: the pose for this sample is out before the next input comes.
+            const auto poses = est.take_poses();
+            REQUIRE(poses.size() == 1);
+            CHECK(poses.front().utime == s->utime);
+            ++imu_after_init;
+        }
+    }
+    CHECK(imu_after_init > 200);  // 50 Hz for ~5 s
+    CHECK(est.counters().poses == static_cast<int64_t>(imu_after_init));
+}
+
+TEST_CASE("late GPS is applied at its own time: the same final state as delivered in order")
+{
+    const Noise noise;
+    const Run run = simulate(figure_eight(30.0, 0.1), noise, kTestDatum, 20.0, 12);
+    PoseEstimator in_order(prompt_config(noise));
+    run_all(in_order, run.inputs);
+    REQUIRE(in_order.counters().reordered == 0);
+
+    // Fixes 100 ms late, velocities 340 ms late (a NovAtel at 9600 baud): behind 5 and 17
+    // IMU samples.
+    const std::vector<Input> late_inputs = gps_delayed(run.inputs, 100'000, 340'000);
+    PoseEstimator late(prompt_config(noise));
+    const auto poses = run_all(late, late_inputs);
+    CHECK(late.counters().reordered == 199);  // every fix and velocity after the first fix
+    CHECK(late.counters().late == 0);
+    CHECK(late.counters().gps_used == in_order.counters().gps_used);
+    CHECK(late.counters().velocity_used == in_order.counters().velocity_used);
+    CHECK(late.counters().imu_used == in_order.counters().imu_used);
+    CHECK(late.counters().poses == in_order.counters().poses);
+    check_same_state(late, in_order);
+    // Poses are not revised: one per IMU sample, in time order.
+    for (std::size_t i = 1; i < poses.size(); ++i) {
+        REQUIRE(poses[i].utime > poses[i - 1].utime);
+    }
+
+    // Without a history the same delivery loses every GPS message.
+    EstimatorConfig no_history = prompt_config(noise);
+    no_history.history_size = 0;
+    PoseEstimator dropped(no_history);
+    run_all(dropped, late_inputs);
+    CHECK(dropped.counters().late == 199);
+    CHECK((dropped.filter().state().position - in_order.filter().state().position).norm() > 1e-3);
+}
+
+TEST_CASE("an input older than the history is dropped and counted; the state is as without it")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 10.0, 13);
+    EstimatorConfig c = prompt_config(noise);
+    c.history_size = 20;  // 20 inputs: ~0.33 s at 50 Hz IMU and 2 x 5 Hz GPS
+    PoseEstimator without(c);
+    run_all(without, run.inputs);
+
+    PoseEstimator est(c);
+    bool injected = false;
+    for (const Input& in : run.inputs) {
+        feed(est, in);
+        if (!injected && utime_of(in) - run.start_utime > 5'000'000) {
+            GpsFix old = std::get<GpsFix>(run.inputs[1]);
+            old.utime = utime_of(in) - 500'000;  // behind 30 inputs
+            est.add(old);
+            injected = true;
+        }
+    }
+    est.flush();
+    CHECK(est.counters().late == 1);
+    CHECK(est.counters().reordered == 0);
+    check_same_state(est, without);
+
+    // An input delivered twice, the second copy late: applied once.
+    PoseEstimator twice(c);
+    const Input* previous_fix = nullptr;
+    for (const Input& in : run.inputs) {
+        feed(twice, in);
+        if (std::holds_alternative<ImuSample>(in) && previous_fix) {
+            feed(twice, *previous_fix);
+            previous_fix = nullptr;
+        } else if (std::holds_alternative<GpsFix>(in)) {
+            previous_fix = &in;
+        }
+    }
+    twice.flush();
+    CHECK(twice.counters().duplicates == 50);
+    check_same_state(twice, without);
+}
+
+TEST_CASE("an input stamped far ahead of the newest is refused and counted; a gap in every input is not")
+{
+    const Noise noise;
+    const Run run = simulate(circle(20.0, 3.0), noise, kTestDatum, 10.0, 14);
+    const EstimatorConfig c = prompt_config(noise);  // max_ahead_us 0.5 s
+    PoseEstimator clean(c);
+    const auto reference = run_all(clean, run.inputs);
+
+    for (const int64_t ahead_us : {int64_t{600'000}, int64_t{3'600'000'000}, int64_t{1} << 61}) {
+        INFO("ahead " << ahead_us << " us");
+        PoseEstimator est(c);
+        int injected = 0;
+        for (const Input& in : run.inputs) {
+            feed(est, in);
+            // Once a second, one fix stamped ahead: taken, it would move the filter (and every
+            // pose) there, and every input after it would be late.
+            if (std::holds_alternative<ImuSample>(in) && utime_of(in) % 1'000'000 < 20'000) {
+                GpsFix bad = std::get<GpsFix>(run.inputs[1]);
+                bad.utime = utime_of(in) + ahead_us;
+                est.add(bad);
+                ++injected;
+            }
+        }
+        est.flush();
+        const auto poses = est.take_poses();
+        REQUIRE(injected >= 9);
+        CHECK(est.counters().ahead == injected);
+        CHECK(est.counters().late == 0);
+        REQUIRE(poses.size() == reference.size());
+        CHECK(same_bits(poses.back(), reference.back()));
+    }
+
+    // Every input resumes 2 s later (shorter than gps_reset_after): the first is refused, the
+    // next agrees with it and is taken, and poses go on.
+    PoseEstimator gap(c);
+    int64_t last = 0;
+    for (const Input& in : run.inputs) {
+        if (utime_of(in) - run.start_utime >= 5'000'000) {
+            Input shifted = in;
+            std::visit([](auto& x) { x.utime += 2'000'000; }, shifted);
+            feed(gap, shifted);
+        } else {
+            feed(gap, in);
+        }
+        last = std::max(last, utime_of(in) + 2'000'000);
+    }
+    gap.flush();
+    const auto poses = gap.take_poses();
+    CHECK(gap.counters().ahead == 1);
+    CHECK(gap.counters().input_gaps == 0);
+    REQUIRE_FALSE(poses.empty());
+    CHECK(poses.back().utime > last - 50'000);
 }

@@ -1,19 +1,27 @@
-// The pose estimator: GPS fixes, GPS velocities and IMU samples in (any order, within a short
-// buffer), poses with covariance out at a fixed rate on data time.
+// The pose estimator: GPS fixes, GPS velocities and IMU samples in (any order), poses with
+// covariance out on data time.
 //
 // Time: everything is driven by the inputs' utime, never by a clock, so the same inputs in the
 // same order give bit-identical poses. Inputs wait in a buffer ordered by utime until the
-// newest input seen is buffer_us newer than them; then they are applied in time order. An
-// input older than the last one applied is too late: refused and counted.
+// newest input seen is buffer_us newer than them (0: applied as they come); then they are
+// applied in time order. An input older than the last one applied is applied at its own time
+// from the history: the state just before it is restored from a ring of the last
+// history_size states and the inputs after it are applied again, so a late GPS measurement
+// gives the same state as one delivered in order. Poses already produced are not revised.
+// An input older than the history is refused and counted (late); so is one stamped more than
+// max_ahead_us ahead of the newest input taken, unless the next input is as well (a gap in
+// every input, not one bad stamp): one such input would otherwise move the filter ahead.
 //
-// Poses are produced at every multiple of the output period (utime % period == 0) that the
-// filter passes, by predicting to exactly that time. A gap between inputs longer than
-// gps_reset_after_us is not predicted across (one step per period of it, with poses nobody
-// wants): the filter restarts from the next fix, so the work per input is bounded whatever
-// the stamps say.
+// Poses: with PoseTimes::grid at every multiple of the output period (utime % period == 0)
+// that the filter passes, by predicting to exactly that time; with PoseTimes::imu at the time
+// of the first IMU sample applied in each period (the newest state, right after the sample).
+// A gap between inputs longer than gps_reset_after_us is not predicted across (one step per
+// period of it, with poses nobody wants): the filter restarts from the next fix, so the work
+// per input is bounded whatever the stamps say.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -30,6 +38,8 @@
 
 namespace ugv::estimation {
 
+enum class PoseTimes : int8_t { grid, imu };
+
 struct EstimatorConfig
 {
     // Datum of the local ENU frame; std::nullopt = the first fix of datum_min_quality.
@@ -39,6 +49,10 @@ struct EstimatorConfig
 
     int64_t output_period_us = 100'000;  // 10 Hz
     int64_t buffer_us = 150'000;         // reorder window
+    PoseTimes pose_times = PoseTimes::grid;
+    // States and inputs kept to apply a late input at its own time (0: late inputs are refused).
+    std::size_t history_size = 100;
+    int64_t max_ahead_us = 500'000;  // an input further ahead of the newest taken is refused
 
     ProcessNoise process;
     double imu_orientation_sigma_rad = 0.035;   // when the sample does not carry one
@@ -102,8 +116,9 @@ struct EstimatorCounters
     int64_t course_rejected = 0;
     int64_t imu_used = 0;
     int64_t imu_rejected = 0;       // orientation failed the gate
-    int64_t late = 0;               // older than what was already applied
-    int64_t reordered = 0;          // arrived out of order but within the buffer
+    int64_t late = 0;               // older than the history (or the last applied, without one)
+    int64_t reordered = 0;          // arrived out of order: buffered, or applied from the history
+    int64_t ahead = 0;              // stamped more than max_ahead_us after the newest input taken
     int64_t duplicates = 0;         // same kind and utime as one buffered or last applied: dropped
     int64_t outages = 0;            // GPS outages started
     int64_t non_finite = 0;         // refused by input_checks
@@ -127,6 +142,7 @@ struct EstimatorCounters
         f("imu_rejected", imu_rejected);
         f("late", late);
         f("reordered", reordered);
+        f("ahead", ahead);
         f("outages", outages);
         f("non_finite", non_finite);
         f("filter_resets", filter_resets);
@@ -151,9 +167,9 @@ public:
     std::vector<PoseEstimate> take_poses();
 
     const EstimatorCounters& counters() const { return counters_; }
-    bool initialized() const { return initialized_; }
+    bool initialized() const { return c_.initialized; }
     const std::optional<LocalFrame>& frame() const { return frame_; }
-    const ErrorStateFilter& filter() const { return filter_; }
+    const ErrorStateFilter& filter() const { return c_.filter; }
     const EstimatorConfig& config() const { return config_; }
 
 private:
@@ -164,7 +180,29 @@ private:
         std::variant<ImuSample, GpsFix, GpsVelocity> data;
     };
 
+    // Everything applying an input changes: restored from the history for a late input.
+    struct Core
+    {
+        ErrorStateFilter filter;
+        int64_t applied_utime = 0;  // utime of the last applied event
+        std::array<int64_t, 3> applied_utime_by_kind{};  // the same, per Event::data index
+        int64_t filter_utime = 0;   // time the filter state is valid at
+        int64_t next_output_utime = 0;
+        bool initialized = false;
+        bool heading_observed = false;
+        std::optional<ImuSample> last_imu;
+        std::optional<ImuSample> last_orientation;
+        int64_t last_fix_used_utime = 0;
+    };
+    struct Applied
+    {
+        Event input;
+        Core after;  // the state once input was applied
+    };
+
+    bool ahead_of_newest(int64_t utime);
     void enqueue(int64_t utime, std::variant<ImuSample, GpsFix, GpsVelocity> data);
+    void apply_late(Event e);
     void release(int64_t up_to_utime);
     void apply(const Event& e);
     void advance_to(int64_t utime);
@@ -178,22 +216,16 @@ private:
     double imu_sigma(const ImuSample& s) const;
 
     EstimatorConfig config_;
-    ErrorStateFilter filter_;
-    std::optional<LocalFrame> frame_;
+    Core c_;
+    std::optional<LocalFrame> frame_;  // never rewound: the datum stays what poses carried
     EstimatorCounters counters_;
     std::deque<Event> buffer_;
+    std::deque<Applied> history_;  // oldest first, at most history_size
     uint64_t arrivals_ = 0;
     int64_t newest_utime_ = 0;
-    int64_t applied_utime_ = 0;  // utime of the last applied event
-    std::array<int64_t, 3> applied_utime_by_kind_{};  // the same, per Event::data index
-    int64_t filter_utime_ = 0;   // time the filter state is valid at
-    int64_t next_output_utime_ = 0;
-    bool initialized_ = false;
-    bool heading_observed_ = false;
+    bool refused_ahead_ = false;   // the last input was refused as ahead of the newest
+    int64_t emitted_utime_ = 0;    // the newest pose produced: none at or before it again
     bool in_outage_ = false;
-    std::optional<ImuSample> last_imu_;
-    std::optional<ImuSample> last_orientation_;
-    int64_t last_fix_used_utime_ = 0;
     std::vector<PoseEstimate> poses_;
 };
 
