@@ -6,6 +6,22 @@ using namespace ugv::simworld;
 using ugv::runtime::Config;
 using ugv::runtime::ConfigError;
 
+namespace {
+
+// The one-line error parsing a scenario text gives, or "" when it parses.
+std::string error(const std::string& text)
+{
+    try {
+        Config c = Config::parse(text, "s.toml");
+        parse_scenario(c);
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
 TEST_CASE("the default scenario is the report's demonstration")
 {
     Config c = Config::parse(default_scenario_toml(), "default.toml");
@@ -28,15 +44,6 @@ TEST_CASE("the default scenario is the report's demonstration")
 
 TEST_CASE("a bad scenario value is one line FILE: KEY: why")
 {
-    auto error = [](const std::string& text) -> std::string {
-        try {
-            Config c = Config::parse(text, "s.toml");
-            parse_scenario(c);
-        } catch (const ConfigError& e) {
-            return e.what();
-        }
-        return "";
-    };
     CHECK(error("") == "");
     CHECK(error("[[segment]]\nkind = \"straight\"\nspeed_mps = 5.0\n") ==
           "s.toml: segment[0].speed_mps: 5 is out of range [0.01, 3]");
@@ -94,15 +101,6 @@ gear_ratio = 100
 
 TEST_CASE("a bad [[laser]] table is one line naming the laser's key")
 {
-    auto error = [](const std::string& text) -> std::string {
-        try {
-            Config c = Config::parse(text, "s.toml");
-            parse_scenario(c);
-        } catch (const ConfigError& e) {
-            return e.what();
-        }
-        return "";
-    };
     CHECK(error("[[laser]]\ntilt_axis_xyz_m = [0, 0, 1]\n") ==
           "s.toml: laser[0].name: is required in a [[laser]] table (e.g. \"left\")");
     CHECK(error("[[laser]]\nname = \"Left\"\n") ==
