@@ -43,7 +43,7 @@ stack_set lms 'units = "cm"'
 stack_start_logger
 if ! stack_start_devices "${world[@]}"; then verdict devices 1 "the simulator did not come up"; bench_end; exit; fi
 stack_start_daemons
-for d in "${STACK_DAEMONS[@]}"; do running "running ugv-$d" "STATUS_${d^^}" 30; done
+for d in "${STACK_DAEMONS[@]}"; do running "running ugv-$d" "$(stack_status_channel "$d")" 30; done
 echo "# running the scenario ($([ -n "$scenario" ] && basename "$scenario" || echo default))"
 while stack_alive sim-world; do sleep 0.5; done
 stack_stop

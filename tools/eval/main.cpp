@@ -10,6 +10,9 @@
 //       the maps of two logs against each other (map_diff.hpp).
 //   ugv-eval interlace LOG [--json]
 //       which sweep order of an interlacing laser fits a nodding log (interlace_command.hpp).
+//   ugv-eval coverage LOG [--ahead X0,X1] [--half-width W] [--turn DEG] [--window S] [--all]
+//       the known share of the area ahead of the vehicle in each map, summarised over the
+//       window after a turn (docs/simulator.md, "Two lasers").
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
@@ -17,6 +20,7 @@
 #include "ugv/bus/typed.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -29,6 +33,7 @@
 #include <ugv/terrain_map_t.hpp>
 
 #include "floor_study.hpp"
+#include "ugv/geometry/rotation.hpp"
 #include "ugv/simworld/height_field.hpp"
 #include "interlace_command.hpp"
 #include "map_diff.hpp"
@@ -113,6 +118,80 @@ int compare(const std::string& path, const std::string& channel, const HeightFn&
         m.decode(last.data(), 0, static_cast<int>(last.size()));
         report(m);
     }
+    return 0;
+}
+
+struct CoverageOptions
+{
+    std::string channel = "TERRAIN_MAP";
+    BodyArea area;
+    double turn_deg = 80.0;
+    double window_s = 5.0;
+    bool all = false;
+};
+
+// The known share of the area ahead in each map; summarised over the window that starts
+// with the first map turned turn_deg from the first map's heading (after a turn the map
+// faces ground it has not seen: the report's figure 19). Exit 1: no map, or no such turn.
+int coverage(const std::string& path, const CoverageOptions& o)
+{
+    lcm::LogFile log(path, "r");
+    if (!log.good()) {
+        std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", path.c_str());
+        return 2;
+    }
+    struct Row
+    {
+        int64_t utime;
+        double turned_deg;
+        AreaCoverage c;
+    };
+    std::vector<Row> rows;
+    terrain_map_t m;
+    double first_yaw = 0.0;
+    int malformed = 0;
+    while (const lcm::LogEvent* ev = log.readNextEvent()) {
+        if (ev->channel != o.channel) continue;
+        if (!ugv::bus::decode_checked(ev->data, static_cast<std::size_t>(ev->datalen), m)) {
+            ++malformed;
+            continue;
+        }
+        const MapSnapshot snap = to_snapshot(m);
+        const double yaw = snap.pose.yaw_rad();
+        if (rows.empty()) first_yaw = yaw;
+        const double turned = ugv::geometry::wrap_angle(yaw - first_yaw) * 180.0 / M_PI;
+        rows.push_back({m.utime, turned, area_coverage(snap, o.area)});
+        if (o.all)
+            std::printf("{\"utime\": %lld, \"turned_deg\": %.1f, \"cells\": %d, \"known\": %d, \"coverage\": %.4f}\n",
+                        static_cast<long long>(m.utime), turned, rows.back().c.cells, rows.back().c.known,
+                        rows.back().c.coverage);
+    }
+    if (malformed > 0)
+        std::fprintf(stderr, "ugv-eval: %d message(s) on %s in %s are not terrain maps (skipped)\n", malformed,
+                     o.channel.c_str(), path.c_str());
+    if (rows.empty()) {
+        std::fprintf(stderr, "ugv-eval: no map on %s in %s\n", o.channel.c_str(), path.c_str());
+        return 1;
+    }
+    const auto turn = std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return std::abs(r.turned_deg) >= o.turn_deg; });
+    if (turn == rows.end()) {
+        std::fprintf(stderr, "ugv-eval: %s: no map turned %.0f deg from the first one's heading\n", path.c_str(), o.turn_deg);
+        return 1;
+    }
+    const int64_t end = turn->utime + static_cast<int64_t>(o.window_s * 1e6);
+    int n = 0;
+    double sum_cov = 0.0, sum_known = 0.0, min_cov = 1.0, max_cov = 0.0;
+    for (auto r = turn; r != rows.end() && r->utime < end; ++r) {
+        ++n;
+        sum_cov += r->c.coverage;
+        sum_known += r->c.known;
+        min_cov = std::min(min_cov, r->c.coverage);
+        max_cov = std::max(max_cov, r->c.coverage);
+    }
+    std::printf("{\"maps\": %d, \"turn_utime\": %lld, \"window_s\": %.1f, \"area_cells\": %d, \"mean_known\": %.1f, "
+                "\"mean_coverage\": %.4f, \"min_coverage\": %.4f, \"max_coverage\": %.4f}\n",
+                n, static_cast<long long>(turn->utime), o.window_s, turn->c.cells, sum_known / n, sum_cov / n, min_cov,
+                max_cov);
     return 0;
 }
 
@@ -201,6 +280,24 @@ int main(int argc, char** argv)
         ->check(CLI::Range(0.01, 5.0));
     cmp->add_flag("--all", all, "every map, not only the last");
 
+    auto* cov = app.add_subcommand("coverage", "the known share of the area ahead of the vehicle, after a turn");
+    std::string cov_log;
+    CoverageOptions co;
+    std::vector<double> ahead{co.area.x0_m, co.area.x1_m};
+    cov->add_option("log", cov_log, "LCM log with terrain_map_t")->required()->check(CLI::ExistingFile);
+    cov->add_option("--channel", co.channel, "channel of the maps");
+    cov->add_option("--ahead", ahead, "the area from X0 to X1 metres ahead of the reference point (body frame)")
+        ->expected(2)
+        ->delimiter(',')
+        ->check(CLI::Range(-100.0, 100.0));
+    cov->add_option("--half-width", co.area.half_width_m, "... and this far either side of the centre line (m)")
+        ->check(CLI::Range(0.1, 100.0));
+    cov->add_option("--turn", co.turn_deg, "the turn: the first map this far (deg) from the first map's heading")
+        ->check(CLI::Range(1.0, 180.0));
+    cov->add_option("--window", co.window_s, "summarise the maps of this many seconds from the turn")
+        ->check(CLI::Range(0.0, 3600.0));
+    cov->add_flag("--all", co.all, "one JSON line per map before the summary");
+
     auto* study = app.add_subcommand("floor-study", "Tables 3 and 4 of the report on a simulated flat floor");
     FloorStudyOptions o;
     study->add_option("--trials", o.trials, "trials averaged")->check(CLI::Range(1, 1000));
@@ -214,6 +311,15 @@ int main(int argc, char** argv)
     if (diff.chosen()) return diff.run();
     if (traverse.chosen()) return traverse.run();
     if (interlace.chosen()) return interlace.run();
+    if (*cov) {
+        if (!(ahead[1] > ahead[0])) {
+            std::fprintf(stderr, "ugv-eval: --ahead %g,%g: X1 must be greater than X0\n", ahead[0], ahead[1]);
+            return 2;
+        }
+        co.area.x0_m = ahead[0];
+        co.area.x1_m = ahead[1];
+        return coverage(cov_log, co);
+    }
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {

@@ -11,7 +11,9 @@
 #                                 for each
 #   stack_start_device NAME [ARGS...]  one device: the real one given by its variable (below),
 #                                 else its emulator `ugv-sim NAME --pty OUT/run/NAME ARGS`
-#   stack_start_daemons [NAME...] daemons (default: all eight), config OUT/config/NAME.toml
+#   stack_start_daemons [NAME...] daemons (default: STACK_DAEMONS), config OUT/config/NAME.toml;
+#                                 with several lasers, lms servo nodscan stand for every
+#                                 instance (lms-left lms-right ...), or name one: lms-left
 #   stack_stop                    daemons, then simulators, then the logger: SIGTERM, wait up
 #                                 to STACK_STOP_WAIT_S (5) each, SIGKILL and report the rest
 #   stack_counter CH NAME [LOG]   a counter of the daemon status on channel CH (STATUS_LMS):
@@ -28,6 +30,15 @@
 # With any of them set, the rest come from the separate emulators (the one-world simulator
 # drives all four devices or none).
 #
+# Several lasers: a scenario with [[laser]] tables (docs/simulator.md) leaves per laser
+# run/lms-NAME, run/servo-NAME and calibration/{nodscan,servo}-NAME.toml; stack_start_devices
+# then sets STACK_LASERS=(NAME...) and STACK_DAEMONS to the instances: ugv-lms, ugv-servo and
+# ugv-nodscan once per laser (daemon names lms-NAME, servo-NAME, nodscan-NAME, run with
+# --instance NAME), each on its channels with the suffix _NAME in capitals: LMS_SCAN_LEFT,
+# SERVO_STATE_LEFT, SERVO_COMMAND_LEFT, POINTS_LEFT, STATUS_LMS_LEFT (stack_status_channel
+# NAME prints a daemon's), sensor_id NAME; ugv-terrain takes every POINTS.* channel.
+# stack_set lms '...' applies to every lms instance, stack_set lms-left '...' to one.
+#
 # After stack_stop: STACK_KILLED (names that had to be killed) and STACK_EXIT[name] (exit
 # statuses). STACK_PREFIX (words, e.g. `ip netns exec host-a`) runs the next processes inside
 # something; set it for one call: `STACK_PREFIX="ip netns exec a" stack_start_devices`.
@@ -37,14 +48,16 @@
 STACK_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 STACK_BIN=${UGV_BIN_DIR:-$STACK_ROOT/build/bin}
 STACK_STOP_WAIT_S=${STACK_STOP_WAIT_S:-5}
-STACK_DAEMONS=(lms gps imu servo nodscan pose terrain traverse)
+STACK_ONE_LASER_DAEMONS=(lms gps imu servo nodscan pose terrain traverse)
+STACK_DAEMONS=("${STACK_ONE_LASER_DAEMONS[@]}")
 declare -A STACK_PIDS=() STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=()
-STACK_KILLED=()
+STACK_KILLED=() STACK_LASERS=()
 export STACK_SIM=none   # none | world | emulators: what the devices are (for the scripts)
 
 stack_init() {  # stack_init OUT [URL]: a new stack (forgets the previous one's settings)
     STACK_OUT=$1
-    STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=() STACK_KILLED=() STACK_SIM=none
+    STACK_EXTRA=() STACK_DEVICE=() STACK_EXIT=() STACK_KILLED=() STACK_SIM=none STACK_LASERS=()
+    STACK_DAEMONS=("${STACK_ONE_LASER_DAEMONS[@]}")
     STACK_URL=${2:-${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}}
     export LCM_DEFAULT_URL=$STACK_URL
     mkdir -p "$STACK_OUT/config" "$STACK_OUT/run" "$STACK_OUT/stderr"
@@ -122,32 +135,93 @@ stack_start_devices() {
         stack_spawn sim-world "$STACK_BIN/ugv-sim" world --run-dir "$run" --lcm-url "$STACK_URL" "$@"
         for d in lms gps imu; do STACK_DEVICE[$d]=$run/$d; done
         STACK_DEVICE[servo]="slcan:$run/servo@115200"
-        stack_wait_paths 15 "$run/ready"
+        stack_wait_paths 15 "$run/ready" || return 1
+        stack_find_lasers "$run"
         return
     fi
     for d in lms gps imu servo; do stack_start_device "$d" || return 1; done
 }
 
-# The config of one daemon: its device, the script's extra lines, then the simulator's
-# calibration for it (tables, so they go last).
-stack_write_config() {
-    local name=$1 cfg=$STACK_OUT/config/$1.toml calib=$STACK_OUT/run/calibration/$1.toml
-    {
-        case $name in
-            lms|gps|imu) printf 'device = "%s"\n' "${STACK_DEVICE[$name]:-}" ;;
-            servo) printf 'transport = "%s"\n' "${STACK_DEVICE[servo]}" ;;
+# stack_find_lasers RUN: the named lasers of the world's run folder (calibration/nodscan-NAME.toml),
+# their devices and daemon instances; none (one laser of a scenario without [[laser]]): as before.
+stack_find_lasers() {
+    local run=$1 f n d
+    STACK_LASERS=()
+    for f in "$run"/calibration/nodscan-*.toml; do
+        [ -e "$f" ] || continue
+        n=${f##*/nodscan-}; STACK_LASERS+=("${n%.toml}")
+    done
+    [ ${#STACK_LASERS[@]} -eq 0 ] && return 0
+    STACK_DAEMONS=()
+    for d in lms gps imu servo nodscan pose terrain traverse; do
+        case $d in
+            lms|servo|nodscan) for n in "${STACK_LASERS[@]}"; do STACK_DAEMONS+=("$d-$n"); done ;;
+            *) STACK_DAEMONS+=("$d") ;;
         esac
+    done
+    for n in "${STACK_LASERS[@]}"; do
+        STACK_DEVICE[lms-$n]=$run/lms-$n
+        STACK_DEVICE[servo-$n]="slcan:$run/servo-$n@115200"
+    done
+}
+
+# stack_status_channel NAME: the status channel of daemon NAME (lms, lms-left, pose ...).
+stack_status_channel() {
+    local name=$1 base=${1%%-*} inst=
+    [ "$name" != "$base" ] && inst=_${name#*-}
+    echo "STATUS_${base^^}${inst^^}"
+}
+
+# The keys that put one instance of a laser's daemon on that laser's channels.
+stack_instance_keys() {
+    local base=$1 n=$2 s=_${2^^}
+    printf 'status_channel = "%s"\n' "$(stack_status_channel "$base-$n")"
+    case $base in
+        lms) printf 'sensor_id = "%s"\nchannel = "LMS_SCAN%s"\nraw_channel = "RAW_LMS%s"\n' "$n" "$s" "$s" ;;
+        servo) printf 'channel = "SERVO_STATE%s"\ncommand_channel = "SERVO_COMMAND%s"\n' "$s" "$s" ;;
+        nodscan) printf 'sensor_id = "%s"\nscan_channel = "LMS_SCAN%s"\nservo_channel = "SERVO_STATE%s"\nchannel = "POINTS%s"\n' \
+                        "$n" "$s" "$s" "$s" ;;
+    esac
+}
+
+# The config of one daemon: its device, the script's extra lines, then the simulator's
+# calibration for it (tables, so they go last; a servo's has top-level keys only and goes
+# before the extra lines, which may end with a table). An instance (lms-left) gets its
+# channel keys first and the extra lines of its base name (lms) before its own.
+stack_write_config() {
+    local name=$1 cfg=$STACK_OUT/config/$1.toml calib=$STACK_OUT/run/calibration/$1.toml base=${1%%-*}
+    {
+        case $base in
+            lms|gps|imu) printf 'device = "%s"\n' "${STACK_DEVICE[$name]:-}" ;;
+            servo) printf 'transport = "%s"\n' "${STACK_DEVICE[$name]}" ;;
+        esac
+        if [ "$name" != "$base" ]; then
+            stack_instance_keys "$base" "${name#*-}"
+            [ "$base" = servo ] && [ -f "$calib" ] && cat "$calib"
+            printf '%s' "${STACK_EXTRA[$base]:-}"
+        fi
         printf '%s' "${STACK_EXTRA[$name]:-}"
-        [ -f "$calib" ] && cat "$calib"
+        [ -f "$calib" ] && { [ "$name" = "$base" ] || [ "$base" != servo ]; } && cat "$calib"
     } >"$cfg"
 }
 
 stack_start_daemons() {
-    local names=("$@") name
-    [ ${#names[@]} -eq 0 ] && names=("${STACK_DAEMONS[@]}")
+    local names=() name n args
+    [ $# -eq 0 ] && set -- "${STACK_DAEMONS[@]}"
+    for name in "$@"; do
+        case $name in
+            lms|servo|nodscan) if [ ${#STACK_LASERS[@]} -gt 0 ]; then
+                                   for n in "${STACK_LASERS[@]}"; do names+=("$name-$n"); done
+                                   continue
+                               fi ;;
+        esac
+        names+=("$name")
+    done
     for name in "${names[@]}"; do
         stack_write_config "$name"
-        stack_spawn "ugv-$name" "$STACK_BIN/ugv-$name" --config "$STACK_OUT/config/$name.toml"
+        args=()
+        [ "$name" != "${name%%-*}" ] && args=(--instance "${name#*-}")
+        stack_spawn "ugv-$name" "$STACK_BIN/ugv-${name%%-*}" --config "$STACK_OUT/config/$name.toml" "${args[@]}"
     done
 }
 

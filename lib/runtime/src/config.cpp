@@ -182,6 +182,12 @@ const std::string& Config::file() const { return impl_->file; }
 
 bool Config::has(const std::string& key) const { return impl_->table.contains(key); }
 
+bool Config::has_tables(const std::string& key) const
+{
+    const toml::node* n = impl_->table.get(key);
+    return n && n->is_array_of_tables();
+}
+
 void Config::fail(const std::string& key, const std::string& why) const
 {
     throw ConfigError(impl_->file, impl_->prefix + key, why);

@@ -1,5 +1,6 @@
 #include "ugv/simworld/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -102,23 +103,69 @@ void read_path(runtime::Config& root, Scenario& s)
     }
 }
 
+void read_mount(runtime::Config& l, LaserSpec& laser)
+{
+    laser.mount.axis_xyz_m = mount_vec(l, "tilt_axis_xyz_m", {0.0, 0.0, 0.87}, 10, 1.0);
+    laser.mount.axis_rpy_rad = mount_vec(l, "tilt_axis_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    laser.mount.laser_xyz_m = mount_vec(l, "laser_xyz_m", {0, 0, 0}, 2, 1.0);
+    laser.mount.laser_rpy_rad = mount_vec(l, "laser_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    laser.range_noise_m = l.get_double("range_noise_m", 0.01, 0.0, 1.0);
+}
+
+void read_servo(runtime::Config&& sv, ServoSpec& servo)
+{
+    servo.node_id = static_cast<int>(sv.get_int("node_id", 1, 1, 127));
+    servo.counts_per_rev = sv.get_double("counts_per_rev", 4096, 1, 1e9);
+    servo.gear_ratio = sv.get_double("gear_ratio", 50, 0.001, 1e6);
+}
+
+// A laser's name becomes file names (lms-NAME), a systemd instance and a channel suffix.
+bool valid_laser_name(const std::string& n)
+{
+    if (n.empty() || n.size() > 16) return false;
+    return std::all_of(n.begin(), n.end(), [](char ch) { return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9'); });
+}
+
+// [laser] + [servo]: today's one laser. [[laser]] tables: one laser each, its servo in
+// [laser.servo] (each laser is nodded by its own drive, on its own CAN adapter).
+void read_lasers(runtime::Config& root, Scenario& s)
+{
+    if (!root.has_tables("laser")) {
+        LaserSpec one;
+        runtime::Config l = root.section("laser");
+        read_mount(l, one);
+        read_servo(root.section("servo"), one.servo);
+        s.lasers = {one};
+        return;
+    }
+    if (root.has("servo"))
+        root.fail("servo", "with [[laser]] tables each laser has its own servo ([laser.servo] after its [[laser]])");
+    std::vector<runtime::Config> tables = root.tables("laser");
+    if (tables.size() > kMaxLasers)
+        root.fail("laser", std::to_string(tables.size()) + " lasers; at most " + std::to_string(kMaxLasers));
+    s.lasers.clear();
+    for (runtime::Config& l : tables) {
+        LaserSpec laser;
+        laser.name = l.get_string("name", "");
+        if (!valid_laser_name(laser.name))
+            l.fail("name", laser.name.empty() ? "is required in a [[laser]] table (e.g. \"left\")"
+                                              : "\"" + laser.name + "\" is not 1 to 16 lower-case letters and digits");
+        for (const LaserSpec& other : s.lasers)
+            if (other.name == laser.name) l.fail("name", "\"" + laser.name + "\" names two lasers");
+        read_mount(l, laser);
+        read_servo(l.section("servo"), laser.servo);
+        l.finish();
+        s.lasers.push_back(laser);
+    }
+}
+
 void read_sensors(runtime::Config& root, Scenario& s)
 {
     runtime::Config v = root.section("vehicle");
     s.vehicle.wheelbase_m = v.get_double("wheelbase_m", 2.5, 0.5, 10.0);
     s.vehicle.track_m = v.get_double("track_m", 1.6, 0.3, 5.0);
 
-    runtime::Config l = root.section("laser");
-    s.laser.mount.axis_xyz_m = mount_vec(l, "tilt_axis_xyz_m", {0.0, 0.0, 0.87}, 10, 1.0);
-    s.laser.mount.axis_rpy_rad = mount_vec(l, "tilt_axis_rpy_deg", {0, 0, 0}, 180, kDegToRad);
-    s.laser.mount.laser_xyz_m = mount_vec(l, "laser_xyz_m", {0, 0, 0}, 2, 1.0);
-    s.laser.mount.laser_rpy_rad = mount_vec(l, "laser_rpy_deg", {0, 0, 0}, 180, kDegToRad);
-    s.laser.range_noise_m = l.get_double("range_noise_m", 0.01, 0.0, 1.0);
-
-    runtime::Config sv = root.section("servo");
-    s.servo.node_id = static_cast<int>(sv.get_int("node_id", 1, 1, 127));
-    s.servo.counts_per_rev = sv.get_double("counts_per_rev", 4096, 1, 1e9);
-    s.servo.gear_ratio = sv.get_double("gear_ratio", 50, 0.001, 1e6);
+    read_lasers(root, s);
 
     runtime::Config g = root.section("gps");
     s.gps.protocol = g.get_enum("protocol", "novatel", {"novatel", "nmea"});

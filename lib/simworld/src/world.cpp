@@ -88,11 +88,12 @@ TruthState World::truth(int64_t utime) const
     return s;
 }
 
-double World::beam_range_m(const TruthState& s, double tilt_rad, double beam_angle_rad, double max_range_m) const
+double World::beam_range_m(const TruthState& s, double tilt_rad, double beam_angle_rad, double max_range_m,
+                           std::size_t laser) const
 {
-    const Eigen::Vector3d origin_body = nodscan::laser_origin_body(scenario_.laser.mount, tilt_rad);
-    const Eigen::Vector3d dir_body =
-        nodscan::beam_point_body(scenario_.laser.mount, tilt_rad, beam_angle_rad, 1.0) - origin_body;
+    const nodscan::MountGeometry& mount = scenario_.lasers.at(laser).mount;
+    const Eigen::Vector3d origin_body = nodscan::laser_origin_body(mount, tilt_rad);
+    const Eigen::Vector3d dir_body = nodscan::beam_point_body(mount, tilt_rad, beam_angle_rad, 1.0) - origin_body;
     const Eigen::Vector3d origin = s.position_m + s.orientation * origin_body;
     const Eigen::Vector3d dir = (s.orientation * dir_body).normalized();
     return ray_cast(field_, origin, dir, max_range_m);

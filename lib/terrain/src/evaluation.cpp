@@ -76,4 +76,27 @@ MapMetrics evaluate(const MapSnapshot& m, const std::function<double(double, dou
     return r;
 }
 
+AreaCoverage area_coverage(const MapSnapshot& m, const BodyArea& area)
+{
+    AreaCoverage r;
+    // Map axes are the body's turned by -residual_yaw (cell_centre_world).
+    const double c = std::cos(m.residual_yaw_rad), s = std::sin(m.residual_yaw_rad);
+    const std::size_t cells = static_cast<std::size_t>(m.nx) * static_cast<std::size_t>(m.ny);
+    if (m.mean_z_m.size() < cells) return r;
+    for (int i = 0; i < m.nx; ++i) {
+        const double mx = m.origin_x_m + (i + 0.5) * m.resolution_m;
+        for (int j = 0; j < m.ny; ++j) {
+            const double my = m.origin_y_m + (j + 0.5) * m.resolution_m;
+            const double bx = c * mx + s * my, by = -s * mx + c * my;
+            if (bx < area.x0_m || bx > area.x1_m || std::abs(by) > area.half_width_m) continue;
+            ++r.cells;
+            if (std::isfinite(m.mean_z_m[static_cast<std::size_t>(i) * static_cast<std::size_t>(m.ny) +
+                                         static_cast<std::size_t>(j)]))
+                ++r.known;
+        }
+    }
+    if (r.cells > 0) r.coverage = static_cast<double>(r.known) / r.cells;
+    return r;
+}
+
 }  // namespace ugv::terrain

@@ -4,6 +4,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -138,4 +139,41 @@ TEST_CASE("ugv-eval: map messages whose bytes lie are skipped and said, never de
     CHECK(eval(dir, {"compare", bad, "--truth", dir / "truth.hf"}, out) == 0);
     CHECK(out.find("\"known\": 16") != std::string::npos);
     CHECK(out.find("2 message(s) on TERRAIN_MAP in " + bad + " are not terrain maps (skipped)") != std::string::npos);
+}
+
+TEST_CASE("ugv-eval coverage: the known share of the area ahead, over the window after the turn")
+{
+    test::TempDir dir;
+    const std::string path = dir / "turn.lcm";
+    {
+        lcm::LogFile log(path, "w");
+        // Four maps 1 s apart, heading east, 45, 90 and 90 deg left; each knows fewer cells
+        // in x 1..3 (cells i = 1, 2: 8 cells of 1 m within 2 m of the centre line): 8, 6, 4, 2.
+        for (int k = 0; k < 4; ++k) {
+            terrain_map_t m = flat_map(0.0f);
+            m.utime = kUtime + k * 1'000'000;
+            m.pose.utime = m.utime;
+            const double yaw = std::min(k, 2) * M_PI / 4;
+            m.pose.orientation[0] = std::cos(yaw / 2);
+            m.pose.orientation[3] = std::sin(yaw / 2);
+            for (int j = 0; j < 2 * k; ++j) m.mean_z[static_cast<std::size_t>(4 + (j % 2) * 4 + j / 2)] = NAN;
+            test::write_event(log, m.utime, "TERRAIN_MAP", m);
+        }
+    }
+    std::string out;
+    REQUIRE(eval(dir, {"coverage", path, "--ahead", "1,3", "--half-width", "2", "--turn", "80", "--window", "5"}, out) == 0);
+    // The turn: the map at 90 deg (the third); the window holds it and the fourth: 4 and 2 of 8.
+    CHECK(out.find("\"maps\": 2,") != std::string::npos);
+    CHECK(out.find("\"turn_utime\": " + std::to_string(kUtime + 2'000'000)) != std::string::npos);
+    CHECK(out.find("\"area_cells\": 8,") != std::string::npos);
+    CHECK(out.find("\"mean_known\": 3.0,") != std::string::npos);
+    CHECK(out.find("\"mean_coverage\": 0.3750") != std::string::npos);
+    CHECK(out.find("\"min_coverage\": 0.2500") != std::string::npos);
+    REQUIRE(eval(dir, {"coverage", path, "--ahead", "1,3", "--half-width", "2", "--all"}, out) == 0);
+    CHECK(out.find("\"turned_deg\": 45.0, \"cells\": 8, \"known\": 6") != std::string::npos);
+    // No turn that far: exit 1 with a line saying so; a bad area: exit 2.
+    CHECK(eval(dir, {"coverage", path, "--turn", "120"}, out) == 1);
+    CHECK(out.find("no map turned 120 deg") != std::string::npos);
+    CHECK(eval(dir, {"coverage", path, "--ahead", "3,1"}, out) == 2);
+    CHECK(out.find("--ahead 3,1: X1 must be greater than X0") != std::string::npos);
 }

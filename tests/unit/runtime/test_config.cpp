@@ -227,3 +227,13 @@ TEST_CASE("arrays of tables read element by element, errors naming the element")
     CHECK(message_of([&] { Config::parse("box = 3\n", "s.toml").tables("box"); }) ==
           "s.toml: box: must be an array of tables ([[box]]), not an integer");
 }
+
+TEST_CASE("has_tables tells an array of tables from a table, another value or nothing")
+{
+    Config c = Config::parse("n = 3\n[one]\nx = 1\n[[many]]\nx = 1\n[[many]]\nx = 2\n", "s.toml");
+    CHECK(c.has_tables("many"));
+    CHECK_FALSE(c.has_tables("one"));
+    CHECK_FALSE(c.has_tables("n"));
+    CHECK_FALSE(c.has_tables("missing"));
+    CHECK(c.has("one"));
+}

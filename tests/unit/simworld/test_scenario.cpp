@@ -6,6 +6,22 @@ using namespace ugv::simworld;
 using ugv::runtime::Config;
 using ugv::runtime::ConfigError;
 
+namespace {
+
+// The one-line error parsing a scenario text gives, or "" when it parses.
+std::string error(const std::string& text)
+{
+    try {
+        Config c = Config::parse(text, "s.toml");
+        parse_scenario(c);
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
 TEST_CASE("the default scenario is the report's demonstration")
 {
     Config c = Config::parse(default_scenario_toml(), "default.toml");
@@ -19,21 +35,15 @@ TEST_CASE("the default scenario is the report's demonstration")
     CHECK(s.path.segments[1].speed_mps == 3.0);
     CHECK(s.path.segments[2].kind == PathSegment::Kind::arc);
     CHECK(s.path.segments[2].turn_rad > 0);  // left
-    CHECK(s.laser.mount.axis_xyz_m[2] == 0.87);
-    CHECK(s.servo.counts_per_rad() == Approx(4096.0 * 50 / (2 * M_PI)));
+    REQUIRE(s.lasers.size() == 1);
+    CHECK(s.lasers[0].name.empty());
+    CHECK(s.lasers[0].suffix().empty());
+    CHECK(s.lasers[0].mount.axis_xyz_m[2] == 0.87);
+    CHECK(s.lasers[0].servo.counts_per_rad() == Approx(4096.0 * 50 / (2 * M_PI)));
 }
 
 TEST_CASE("a bad scenario value is one line FILE: KEY: why")
 {
-    auto error = [](const std::string& text) -> std::string {
-        try {
-            Config c = Config::parse(text, "s.toml");
-            parse_scenario(c);
-        } catch (const ConfigError& e) {
-            return e.what();
-        }
-        return "";
-    };
     CHECK(error("") == "");
     CHECK(error("[[segment]]\nkind = \"straight\"\nspeed_mps = 5.0\n") ==
           "s.toml: segment[0].speed_mps: 5 is out of range [0.01, 3]");
@@ -41,4 +51,68 @@ TEST_CASE("a bad scenario value is one line FILE: KEY: why")
     CHECK(error("[[segment]]\nkind = \"reverse\"\n") ==
           "s.toml: segment[0].kind: \"reverse\" is not one of \"straight\", \"arc\", \"stop\"");
     CHECK(error("[gps]\nantena_m = [0, 0, 1]\n") == "s.toml: gps.antena_m: unknown key");
+}
+
+TEST_CASE("a scenario without [[laser]] has today's one laser, its [laser] and [servo] read as before")
+{
+    Config c = Config::parse("[laser]\nlaser_xyz_m = [0.1, 0.0, 0.05]\nrange_noise_m = 0.02\n[servo]\nnode_id = 5\n",
+                             "one.toml");
+    const Scenario s = parse_scenario(c);
+    REQUIRE(s.lasers.size() == 1);
+    CHECK(s.lasers[0].name.empty());
+    CHECK(s.lasers[0].mount.laser_xyz_m.x() == 0.1);
+    CHECK(s.lasers[0].range_noise_m == 0.02);
+    CHECK(s.lasers[0].servo.node_id == 5);
+    Config none = Config::parse("", "none.toml");
+    CHECK(parse_scenario(none).lasers.size() == 1);
+}
+
+TEST_CASE("[[laser]] tables: several lasers, each with its mount and its own servo")
+{
+    Config c = Config::parse(R"(
+[[laser]]
+name = "left"
+tilt_axis_xyz_m = [0.0, 0.6, 0.87]
+[laser.servo]
+node_id = 1
+[[laser]]
+name = "right"
+tilt_axis_xyz_m = [0.0, -0.6, 0.87]
+range_noise_m = 0.03
+[laser.servo]
+node_id = 2
+gear_ratio = 100
+)",
+                             "tandem.toml");
+    const Scenario s = parse_scenario(c);
+    REQUIRE(s.lasers.size() == 2);
+    CHECK(s.lasers[0].name == "left");
+    CHECK(s.lasers[0].suffix() == "-left");
+    CHECK(s.lasers[0].mount.axis_xyz_m.y() == 0.6);
+    CHECK(s.lasers[0].servo.node_id == 1);
+    CHECK(s.lasers[0].range_noise_m == 0.01);  // default
+    CHECK(s.lasers[1].name == "right");
+    CHECK(s.lasers[1].mount.axis_xyz_m.y() == -0.6);
+    CHECK(s.lasers[1].range_noise_m == 0.03);
+    CHECK(s.lasers[1].servo.node_id == 2);
+    CHECK(s.lasers[1].servo.gear_ratio == 100);
+    CHECK(s.lasers[1].servo.counts_per_rev == 4096);  // default
+}
+
+TEST_CASE("a bad [[laser]] table is one line naming the laser's key")
+{
+    CHECK(error("[[laser]]\ntilt_axis_xyz_m = [0, 0, 1]\n") ==
+          "s.toml: laser[0].name: is required in a [[laser]] table (e.g. \"left\")");
+    CHECK(error("[[laser]]\nname = \"Left\"\n") ==
+          "s.toml: laser[0].name: \"Left\" is not 1 to 16 lower-case letters and digits");
+    CHECK(error("[[laser]]\nname = \"a\"\n[[laser]]\nname = \"a\"\n") == "s.toml: laser[1].name: \"a\" names two lasers");
+    CHECK(error("[servo]\nnode_id = 2\n[[laser]]\nname = \"a\"\n") ==
+          "s.toml: servo: with [[laser]] tables each laser has its own servo ([laser.servo] after its [[laser]])");
+    CHECK(error("[[laser]]\nname = \"a\"\n[laser.servo]\nnode = 2\n") == "s.toml: laser[0].servo.node: unknown key");
+    CHECK(error("[[laser]]\nname = \"a\"\n[laser.servo]\nnode_id = 200\n") ==
+          "s.toml: laser[0].servo.node_id: 200 is out of range [1, 127]");
+    CHECK(error("[[laser]]\nname = \"a\"\nlaser_xyz = [0, 0, 0]\n") == "s.toml: laser[0].laser_xyz: unknown key");
+    std::string nine;
+    for (int i = 0; i < 9; ++i) nine += "[[laser]]\nname = \"l" + std::to_string(i) + "\"\n";
+    CHECK(error(nine) == "s.toml: laser: 9 lasers; at most 8");
 }

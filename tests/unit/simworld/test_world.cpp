@@ -51,6 +51,20 @@ TEST_CASE("a laser beam from the tilted mount hits the ground where the geometry
     CHECK(std::isinf(w.beam_range_m(s, -tilt, 0.0, 80.0)));
 }
 
+TEST_CASE("each laser of a scenario casts from its own mount")
+{
+    Scenario sc = flat_run();
+    LaserSpec high;
+    high.name = "high";
+    high.mount.axis_xyz_m = {0.0, 0.5, 1.5};
+    sc.lasers.push_back(high);
+    const World w(sc, kStart);
+    const TruthState s = w.truth(kStart);
+    const double tilt = 10.0 * M_PI / 180.0;
+    CHECK(w.beam_range_m(s, tilt, 0.0, 80.0, 0) == Approx(0.87 / std::sin(tilt)).epsilon(1e-9));
+    CHECK(w.beam_range_m(s, tilt, 0.0, 80.0, 1) == Approx(1.5 / std::sin(tilt)).epsilon(1e-9));
+}
+
 TEST_CASE("a ramp pitches the vehicle nose up, and the antenna's position is geodetic")
 {
     Scenario sc = flat_run();

@@ -60,3 +60,32 @@ TEST_CASE("evaluate: the highest sample of a wall's cell says how tall the wall 
     CHECK(r.max_bias_m == Approx(0.015).epsilon(1e-5));  // (0.03 + 0) / 2
     CHECK(r.max_rmse_m == Approx(std::sqrt(0.0009 / 2)).epsilon(1e-5));
 }
+
+TEST_CASE("area_coverage: the known share of the cells ahead, placed with the map's yaw residual")
+{
+    MapSnapshot m;
+    m.nx = 3;
+    m.ny = 2;
+    m.resolution_m = 1.0;
+    m.origin_x_m = 0.0;
+    m.origin_y_m = -1.0;
+    // Centres: x 0.5, 1.5, 2.5 ahead; y -0.5, 0.5. Known: (1, 0), (2, 1) and (0, 0).
+    m.mean_z_m = {0.0f, NAN, 0.1f, NAN, NAN, 0.2f};
+    AreaCoverage a = area_coverage(m, {1.0, 3.0, 1.0});
+    CHECK(a.cells == 4);
+    CHECK(a.known == 2);
+    CHECK(a.coverage == Approx(0.5));
+    a = area_coverage(m, {1.0, 3.0, 0.4});  // no centre within 0.4 m of the centre line
+    CHECK(a.cells == 0);
+    CHECK(a.coverage == 0.0);
+    // The map's axes 90 deg to the right of the body's: a map cell at x = 2.5 lies 2.5 m to
+    // the vehicle's right, outside an area straight ahead.
+    m.residual_yaw_rad = M_PI / 2;
+    a = area_coverage(m, {-1.0, 1.0, 3.0});
+    CHECK(a.cells == 6);
+    CHECK(a.known == 3);
+    a = area_coverage(m, {1.0, 3.0, 3.0});
+    CHECK(a.cells == 0);
+    m.mean_z_m.clear();  // a map without cells
+    CHECK(area_coverage(m, {-1.0, 1.0, 3.0}).cells == 0);
+}

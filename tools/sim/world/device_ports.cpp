@@ -59,15 +59,26 @@ double TiltHistory::at(int64_t utime) const
     return lo->second + f * (hi->second - lo->second);
 }
 
-ServoPort::ServoPort(const std::string& link_path, const simworld::Scenario& s, int64_t now_utime, TiltHistory& tilt)
+namespace {
+
+std::string base_name(const std::string& path)
+{
+    const std::size_t slash = path.rfind('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+ServoPort::ServoPort(const std::string& link_path, const simworld::ServoSpec& spec, int64_t now_utime, TiltHistory& tilt)
     : DevicePort(link_path),
       drive_([&] {
           servo::DriveModel m;
-          m.node_id = static_cast<uint8_t>(s.servo.node_id);
+          m.node_id = static_cast<uint8_t>(spec.node_id);
           return m;
       }()),
-      counts_per_rad_(s.servo.counts_per_rad()),
-      tilt_(tilt)
+      counts_per_rad_(spec.counts_per_rad()),
+      tilt_(tilt),
+      name_(base_name(link_path))
 {
     drive_.power_on(now_utime);
     tilt_.add(now_utime, tilt_rad());
@@ -104,22 +115,22 @@ std::size_t ServoPort::service(bool readable, int64_t now)
 
 std::string ServoPort::summary() const
 {
-    return "servo: " + std::to_string(frames_sent_) + " CAN frames from the drive";
+    return name_ + ": " + std::to_string(frames_sent_) + " CAN frames from the drive";
 }
 
-LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed,
-                 const lms::DeviceOptions& timing)
-    : DevicePort(link_path), rng_(seed)
+LmsPort::LmsPort(const std::string& link_path, const simworld::World& world, std::size_t laser,
+                 const TiltHistory& tilt, uint32_t seed, const lms::DeviceOptions& timing)
+    : DevicePort(link_path), rng_(seed), name_(base_name(link_path))
 {
     lms::DeviceOptions o;
     o.linear_timing = timing.linear_timing;
     o.sweep_order_05 = timing.sweep_order_05;
     o.sweep_order_025 = timing.sweep_order_025;
     o.seed = seed;
-    const double noise_m = world.scenario().laser.range_noise_m;
-    o.beam_scene = [&world, &tilt, noise_m, this](double angle_rad, int64_t beam_utime) {
+    const double noise_m = world.scenario().lasers.at(laser).range_noise_m;
+    o.beam_scene = [&world, &tilt, noise_m, laser, this](double angle_rad, int64_t beam_utime) {
         const simworld::TruthState s = world.truth(beam_utime);
-        const double r = world.beam_range_m(s, tilt.at(beam_utime), angle_rad, 81.0);
+        const double r = world.beam_range_m(s, tilt.at(beam_utime), angle_rad, 81.0, laser);
         if (!std::isfinite(r) || noise_m <= 0) return r;
         std::normal_distribution<double> noise(0.0, noise_m);
         return std::max(0.0, r + noise(rng_));
@@ -139,7 +150,7 @@ std::size_t LmsPort::service(bool readable, int64_t now)
 std::string LmsPort::summary() const
 {
     const lms::DeviceStats& s = device_->stats();
-    return "lms: " + std::to_string(s.scans_sent) + " scans sent, " + std::to_string(s.scans_skipped) +
+    return name_ + ": " + std::to_string(s.scans_sent) + " scans sent, " + std::to_string(s.scans_skipped) +
            " skipped (due while the line was busy or the simulator was late)";
 }
 

@@ -55,7 +55,7 @@ private:
 class ServoPort : public DevicePort
 {
 public:
-    ServoPort(const std::string& link_path, const simworld::Scenario& scenario, int64_t now_utime, TiltHistory& tilt);
+    ServoPort(const std::string& link_path, const simworld::ServoSpec& spec, int64_t now_utime, TiltHistory& tilt);
     std::size_t service(bool readable, int64_t now_utime) override;
     double tilt_rad() const;
     std::string summary() const override;
@@ -65,6 +65,7 @@ private:
     servo::SlcanAdapter adapter_;
     double counts_per_rad_;
     TiltHistory& tilt_;
+    std::string name_;  // "servo" or "servo-NAME", for the summary
     int64_t last_step_utime_ = 0;
     uint64_t frames_sent_ = 0;
 };
@@ -72,10 +73,11 @@ private:
 class LmsPort : public DevicePort
 {
 public:
-    // timing: the emulator's beam timing options (linear_timing, sweep orders); the rest of
-    // the device options come from the world.
-    LmsPort(const std::string& link_path, const simworld::World& world, const TiltHistory& tilt, uint32_t seed,
-            const lms::DeviceOptions& timing);
+    // The LMS of world.scenario().lasers[laser], on the tilt its servo recorded. timing: the
+    // emulator's beam timing options (linear_timing, sweep orders); the rest of the device
+    // options come from the world.
+    LmsPort(const std::string& link_path, const simworld::World& world, std::size_t laser, const TiltHistory& tilt,
+            uint32_t seed, const lms::DeviceOptions& timing);
     std::size_t service(bool readable, int64_t now_utime) override;
     const lms::DeviceStats& stats() const { return device_->stats(); }
     std::string summary() const override;
@@ -83,6 +85,7 @@ public:
 private:
     std::unique_ptr<lms::LmsDevice> device_;
     std::mt19937 rng_;
+    std::string name_;  // "lms" or "lms-NAME", for the summary
 };
 
 class GpsPort : public DevicePort

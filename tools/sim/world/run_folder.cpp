@@ -27,13 +27,26 @@ std::string triple(const Eigen::Vector3d& v, double scale)
 
 }  // namespace
 
-std::string nodscan_calibration(const simworld::Scenario& s)
+std::string nodscan_calibration(const simworld::Scenario& s, std::size_t laser)
 {
-    const nodscan::MountGeometry& m = s.laser.mount;
-    return "# The simulated vehicle's laser mount (ugv-sim world, scenario " + s.name + ")\n[mount]\n" +
+    const simworld::LaserSpec& l = s.lasers.at(laser);
+    const nodscan::MountGeometry& m = l.mount;
+    const std::string which = l.name.empty() ? "laser mount" : "mount of laser " + l.name;
+    return "# The simulated vehicle's " + which + " (ugv-sim world, scenario " + s.name + ")\n[mount]\n" +
            "tilt_axis_xyz_m = " + triple(m.axis_xyz_m, 1.0) + "\n" + "tilt_axis_rpy_deg = " +
            triple(m.axis_rpy_rad, kRadToDeg) + "\n" + "laser_xyz_m = " + triple(m.laser_xyz_m, 1.0) + "\n" +
            "laser_rpy_deg = " + triple(m.laser_rpy_rad, kRadToDeg) + "\n";
+}
+
+std::string servo_calibration(const simworld::Scenario& s, std::size_t laser)
+{
+    const simworld::LaserSpec& l = s.lasers.at(laser);
+    std::ostringstream o;
+    o.precision(12);
+    o << "# The drive nodding laser " << l.name << " (ugv-sim world, scenario " << s.name << ")\n"
+      << "node_id = " << l.servo.node_id << "\ncounts_per_rev = " << l.servo.counts_per_rev
+      << "\ngear_ratio = " << l.servo.gear_ratio << "\n";
+    return o.str();
 }
 
 std::string pose_calibration(const simworld::Scenario& s)
@@ -60,7 +73,14 @@ void write_run_folder(const std::string& dir, const simworld::World& world, cons
         throw std::runtime_error(dir + "/calibration: " + std::strerror(errno));
     write_file(dir + "/truth.hf", simworld::encode_height_field(world.field()));
     write_file(dir + "/scenario.toml", scenario_toml);
-    write_file(dir + "/calibration/nodscan.toml", nodscan_calibration(world.scenario()));
+    const simworld::Scenario& s = world.scenario();
+    for (std::size_t k = 0; k < s.lasers.size(); ++k) {
+        write_file(dir + "/calibration/nodscan" + s.lasers[k].suffix() + ".toml", nodscan_calibration(s, k));
+        // A named laser's drive may have any node id; the one laser of a scenario without
+        // [[laser]] keeps ugv-servo's defaults, as it always has.
+        if (!s.lasers[k].name.empty())
+            write_file(dir + "/calibration/servo" + s.lasers[k].suffix() + ".toml", servo_calibration(s, k));
+    }
     write_file(dir + "/calibration/pose.toml", pose_calibration(world.scenario()));
 }
 

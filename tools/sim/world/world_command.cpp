@@ -3,12 +3,13 @@
 //   ugv-sim world --run-dir DIR [--scenario FILE] [--lcm-url URL] [--duration S]
 //   ugv-sim world --print-scenario        (the default scenario, a starting point for others)
 //
-// The run folder gets the device links (lms, servo, gps, imu), truth.hf, scenario.toml,
-// calibration/{nodscan,pose}.toml, and `ready` once every device is up. SIM_TRUTH
-// (sim_truth_t) goes out at 100 Hz. It ends after the scenario's path and hold time, after
+// The run folder gets the device links (lms, servo, gps, imu; with [[laser]] tables
+// lms-NAME and servo-NAME per laser), truth.hf, scenario.toml, calibration/{nodscan,pose}.toml
+// (nodscan-NAME.toml and servo-NAME.toml per named laser), and `ready` once every device is
+// up. SIM_TRUTH (sim_truth_t, servo_angle of the first laser) goes out at 100 Hz. It ends after the scenario's path and hold time, after
 // --duration, or on SIGINT/SIGTERM.
 //
-// One thread: poll() on the four pty masters with a 1 ms timeout, then every device is
+// One thread: poll() on the pty masters with a 1 ms timeout, then every device is
 // serviced with the same clock reading, so the servo's encoder, the laser's beams, the GPS
 // fixes and the IMU samples all come from one truth.
 #include <poll.h>
@@ -82,14 +83,22 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
     const sw::World world(scenario, start);
     write_run_folder(dir, world, scenario_toml);
 
-    TiltHistory tilt;
-    std::unique_ptr<ServoPort> servo;
-    std::vector<std::unique_ptr<DevicePort>> ports;
+    // Per laser: its servo's tilt history, its servo, its LMS. Servos come first in `all`, so
+    // the laser's beams read the tilt their servo just recorded.
+    const std::size_t n_lasers = scenario.lasers.size();
+    std::vector<std::unique_ptr<TiltHistory>> tilts;
+    std::vector<std::unique_ptr<DevicePort>> servos, ports;
     const int64_t now0 = ugv::io::now_utime();
-    if (scenario.devices.servo) {
-        servo = std::make_unique<ServoPort>(dir + "/servo", scenario, now0, tilt);
+    for (std::size_t k = 0; k < n_lasers; ++k) {
+        const sw::LaserSpec& laser = scenario.lasers[k];
+        tilts.push_back(std::make_unique<TiltHistory>());
+        if (scenario.devices.servo)
+            servos.push_back(std::make_unique<ServoPort>(dir + "/servo" + laser.suffix(), laser.servo, now0, *tilts[k]));
+        // The first laser keeps the seed a one-laser world always had.
+        if (scenario.devices.lms)
+            ports.push_back(std::make_unique<LmsPort>(dir + "/lms" + laser.suffix(), world, k, *tilts[k],
+                                                      seed + (k == 0 ? 0U : 2U + static_cast<uint32_t>(k)), lms_timing));
     }
-    if (scenario.devices.lms) ports.push_back(std::make_unique<LmsPort>(dir + "/lms", world, tilt, seed, lms_timing));
     if (scenario.devices.gps) ports.push_back(std::make_unique<GpsPort>(dir + "/gps", world, now0, seed + 1));
     if (scenario.devices.imu) ports.push_back(std::make_unique<ImuPort>(dir + "/imu", world, now0, seed + 2));
     write_file(dir + "/ready", "");
@@ -98,7 +107,7 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
                  scenario.name.c_str(), static_cast<double>(end - start) * 1e-6, dir.c_str());
 
     std::vector<DevicePort*> all;
-    if (servo) all.push_back(servo.get());
+    for (auto& p : servos) all.push_back(p.get());
     for (auto& p : ports) all.push_back(p.get());
     std::vector<pollfd> fds(all.size());
     int64_t next_truth = start, seq = 0;
@@ -110,14 +119,13 @@ int run(const std::string& dir, const std::string& scenario_toml, const std::str
         const int64_t now = ugv::io::now_utime();
         if (now >= end) break;
         lateness.add(now);
-        // The servo first: the laser's beams read the tilt it just recorded.
         for (std::size_t i = 0; i < all.size(); ++i) dropped += all[i]->service((fds[i].revents & POLLIN) != 0, now);
         // Truth on a fixed 10 ms grid: after a stall of the simulator the instants it missed
         // are sent late but with their own time (up to one second of them).
         if (now - next_truth > 1'000'000) next_truth = now;
         while (now >= next_truth) {
             const sw::TruthState s = world.truth(next_truth);
-            ugv::bus::publish(*bus, "SIM_TRUTH", truth_message(world, s, tilt.at(next_truth), seq++, scenario.name));
+            ugv::bus::publish(*bus, "SIM_TRUTH", truth_message(world, s, tilts[0]->at(next_truth), seq++, scenario.name));
             next_truth += 10'000;
         }
     }

@@ -85,6 +85,9 @@ public:
     // Why pattern is not a channel regex to subscribe with, or empty when it is one.
     static std::string channel_regex_problem(const std::string& pattern);
     bool has(const std::string& key) const;
+    // True when key holds an array of tables ([[key]]): for a key that may be either a
+    // table or an array of tables (a scenario's [laser] or [[laser]]).
+    bool has_tables(const std::string& key) const;
     // A sub-table [name]; its keys are reported as "name.key". Missing table = all defaults.
     Config section(const std::string& name);
     // An array of tables ([[name]] ... [[name]]), in file order; keys inside are reported as

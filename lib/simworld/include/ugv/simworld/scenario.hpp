@@ -3,7 +3,9 @@
 // line `FILE: KEY: why`); default_scenario_toml() is the report's demonstration.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -22,12 +24,6 @@ struct VehicleSpec
     double track_m = 1.6;
 };
 
-struct LaserSpec
-{
-    nodscan::MountGeometry mount{{0.0, 0.0, 0.87}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // as ugv-nodscan's [mount]
-    double range_noise_m = 0.01;   // 1-sigma
-};
-
 struct ServoSpec
 {
     int node_id = 1;
@@ -35,6 +31,21 @@ struct ServoSpec
     double gear_ratio = 50;
     double counts_per_rad() const;
 };
+
+// One nodding laser: the LMS on its tilt axis and the servo that nods it.
+struct LaserSpec
+{
+    // "" for the one laser of a scenario without [[laser]] tables; else the [[laser]]'s name,
+    // which names its devices in the run folder (lms-NAME, servo-NAME) and its calibration.
+    std::string name;
+    nodscan::MountGeometry mount{{0.0, 0.0, 0.87}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // as ugv-nodscan's [mount]
+    double range_noise_m = 0.01;   // 1-sigma
+    ServoSpec servo;
+    // "" or "-NAME": appended to lms, servo and calibration/nodscan in the run folder.
+    std::string suffix() const { return name.empty() ? "" : "-" + name; }
+};
+
+constexpr std::size_t kMaxLasers = 8;
 
 struct GpsSpec
 {
@@ -70,8 +81,8 @@ struct Scenario
     PathSpec path;
     double hold_s = 5.0;                   // standing still after the path before ending
     VehicleSpec vehicle;
-    LaserSpec laser;
-    ServoSpec servo;
+    // At least one: [laser] and [servo] (one laser, named ""), or one per [[laser]] table.
+    std::vector<LaserSpec> lasers{LaserSpec{}};
     GpsSpec gps;
     ImuSpec imu;
     DeviceSet devices;

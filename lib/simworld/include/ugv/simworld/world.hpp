@@ -3,6 +3,7 @@
 // without noise. One World is shared by every emulated device, so they all agree.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <Eigen/Core>
@@ -37,8 +38,10 @@ public:
     World(const Scenario& scenario, int64_t start_utime);
 
     TruthState truth(int64_t utime) const;
-    // The range along one laser beam (no noise), +infinity for no echo within max_range_m.
-    double beam_range_m(const TruthState& state, double tilt_rad, double beam_angle_rad, double max_range_m) const;
+    // The range along one beam of scenario().lasers[laser] (no noise), +infinity for no echo
+    // within max_range_m.
+    double beam_range_m(const TruthState& state, double tilt_rad, double beam_angle_rad, double max_range_m,
+                        std::size_t laser = 0) const;
     // The GPS antenna's position and the vehicle's ENU velocity at the antenna.
     Geodetic antenna_position(const TruthState& state) const;
     Geodetic to_geodetic(const Eigen::Vector3d& enu_m) const;

@@ -39,4 +39,23 @@ MapMetrics evaluate(const MapSnapshot& map, const std::function<double(double, d
 // ENU position of the centre of cell (i, j) of the snapshot.
 Eigen::Vector2d cell_centre_world(const MapSnapshot& map, int i, int j);
 
+// An area in the vehicle's body frame laid on the ground: x in [x0_m, x1_m] ahead of the
+// reference point, |y| <= half_width_m.
+struct BodyArea
+{
+    double x0_m = 2.0, x1_m = 20.0, half_width_m = 6.0;
+};
+
+struct AreaCoverage
+{
+    int cells = 0;          // cells of the map whose centre lies in the area
+    int known = 0;          // of which known (mean not NaN)
+    double coverage = 0.0;  // known / cells
+};
+
+// How much of an area around the vehicle the map knows: no truth needed, the same for any
+// sensor set (docs/simulator.md, "Two lasers"). Cells are placed with the map's own yaw
+// residual, so the area stays on the vehicle between the map's rotations.
+AreaCoverage area_coverage(const MapSnapshot& map, const BodyArea& area);
+
 }  // namespace ugv::terrain
