@@ -38,7 +38,9 @@ void LogConverter::add(const LogEvent& event)
     if (ch.type.empty()) {
         // The channel's topics, made when its first ugv message comes.
         ch.type = type;
+        const bool raw = !std::regex_match(event.channel.begin(), event.channel.end(), no_raw_);
         for (auto& spec : foxglove::topics_for(event.channel, type)) {
+            if (spec.kind == foxglove::TopicKind::raw && !raw) continue;
             Topic t;
             t.channel_id = writer_.add_channel(schema_id(spec), spec.topic, "json");
             t.spec = std::move(spec);
@@ -48,24 +50,20 @@ void LogConverter::add(const LogEvent& event)
         ++counters_.malformed;
         return;
     }
+    if (!reflect::well_formed(event.data, event.size)) {
+        ++counters_.malformed;
+        return;
+    }
     const auto log_time = static_cast<uint64_t>(event.utime < 0 ? 0 : event.utime) * 1000;
-    for (std::size_t k = 0; k < ch.topics.size(); ++k) {
-        Topic& t = ch.topics[k];
-        if (!converter_.convert(t.spec, event.data, event.size, json_)) {
-            if (k == 0) {  // the raw topic: the whole message is bad
-                ++counters_.malformed;
-                return;
-            }
-            continue;
-        }
+    for (Topic& t : ch.topics) {
+        // False also for a status without a change: no Log for it.
+        if (!converter_.convert(t.spec, event.data, event.size, json_)) continue;
         writer_.write_message(t.channel_id, t.sequence++, log_time, log_time,
                               reinterpret_cast<const uint8_t*>(json_.data()), json_.size());
         ++counters_.messages;
-        if (k == 0) {
-            ++counters_.converted;
-            ++ch.converted;
-        }
     }
+    ++counters_.converted;
+    ++ch.converted;
 }
 
 std::map<std::string, uint64_t> LogConverter::channel_counts() const

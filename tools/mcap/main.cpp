@@ -1,5 +1,5 @@
 // ugv-mcap: an lcm-logger log into an MCAP file that Foxglove opens (docs/foxglove.md).
-//   ugv-mcap LOG OUT.mcap [--channels REGEX] [--compression zstd|lz4|none] [--quiet]
+//   ugv-mcap LOG OUT.mcap [--channels REGEX] [--no-raw REGEX] [--compression zstd|lz4|none] [--quiet]
 // Exit status: 0 converted; 1 converted, but damaged stretches of the log were skipped (the
 // events around them are in the file); 2 bad arguments, a missing, empty or non-LCM log, or
 // an output that cannot be written.
@@ -11,9 +11,9 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <regex>
+#include <tuple>
 
 #include <CLI/CLI.hpp>
 
@@ -81,29 +81,34 @@ private:
 
 int main(int argc, char** argv)
 {
-    std::string log, out, channels = ".*", compression = "zstd";
+    std::string log, out, channels = ".*", no_raw, compression = "zstd";
     bool quiet = false;
     CLI::App app{"ugv-mcap: convert an lcm-logger log into MCAP for Foxglove"};
     app.set_version_flag("--version", std::string("ugv-mcap ") + UGV_VERSION);
     app.add_option("LOG", log, "the lcm-logger log")->required();
     app.add_option("OUT", out, "the MCAP file to write (replaced when it exists)")->required();
     app.add_option("--channels", channels, "only channels matching this regex (whole name)");
+    app.add_option("--no-raw", no_raw,
+                   "channels whose own JSON topic is left out, keeping their Foxglove topics (e.g. the maps: "
+                   "their grids carry every cell)");
     app.add_option("--compression", compression, "chunk compression: zstd, lz4 or none")->capture_default_str();
     app.add_flag("--quiet", quiet, "no progress on stderr");
     CLI11_PARSE(app, argc, argv);
 
     ugv::foxglove::McapOptions options;
-    if (const char* level = std::getenv("UGV_MCAP_ZSTD_LEVEL")) options.zstd_level = std::atoi(level);
     if (!ugv::foxglove::parse_compression(compression, options.compression)) {
         std::fprintf(stderr, "ugv-mcap: --compression '%s': must be zstd, lz4 or none\n", compression.c_str());
         return 2;
     }
-    std::regex re;
-    try {
-        re = std::regex(channels);
-    } catch (const std::regex_error& e) {
-        std::fprintf(stderr, "ugv-mcap: --channels '%s' is not a valid regex: %s\n", channels.c_str(), e.what());
-        return 2;
+    std::regex re, no_raw_re("$^");
+    for (auto [option, text, regex] : {std::tuple{"--channels", &channels, &re}, std::tuple{"--no-raw", &no_raw, &no_raw_re}}) {
+        if (option == std::string("--no-raw") && text->empty()) continue;
+        try {
+            *regex = std::regex(*text);
+        } catch (const std::regex_error& e) {
+            std::fprintf(stderr, "ugv-mcap: %s '%s' is not a valid regex: %s\n", option, text->c_str(), e.what());
+            return 2;
+        }
     }
     MappedFile file;
     if (const std::string err = map_file(log, file); !err.empty()) {
@@ -130,7 +135,7 @@ int main(int argc, char** argv)
     uint64_t events = 0;
     {
         ugv::foxglove::McapWriter writer(sink, options);
-        ugv::mcap::LogConverter converter(writer, re);
+        ugv::mcap::LogConverter converter(writer, re, no_raw_re);
         do {
             converter.add(event);
             // Progress on long logs, at most once a second.

@@ -40,7 +40,19 @@ bool decode(const uint8_t* data, std::size_t size, Msg& msg)
     return msg.decode(data, 0, static_cast<int>(size)) == static_cast<int>(size);
 }
 
-void put_f32(std::vector<uint8_t>& b, std::size_t at, float v) { std::memcpy(b.data() + at, &v, 4); }
+void put_f32(uint8_t* at, float v) { std::memcpy(at, &v, 4); }
+
+// The cells of an nx x ny map (cell (i, j) at i * ny + j) in Foxglove's order: row j (along
+// y), column i (along x). fill(cell bytes, k) writes map cell k.
+template <typename Fill>
+std::vector<uint8_t> grid_cells(int nx, int ny, uint32_t stride, Fill fill)
+{
+    const auto x = static_cast<std::size_t>(nx), y = static_cast<std::size_t>(ny);
+    std::vector<uint8_t> cells(x * y * stride);
+    for (std::size_t i = 0; i < x; ++i)
+        for (std::size_t j = 0; j < y; ++j) fill(cells.data() + (j * x + i) * stride, i * y + j);
+    return cells;
+}
 
 void fields(JsonOut& j, std::initializer_list<Packed> list)
 {
@@ -79,18 +91,14 @@ bool terrain_grid(const uint8_t* data, std::size_t size, std::string& json)
     ugv::terrain_map_t m{};  // value-initialised (here and below): decode fills every field, the compiler cannot see it
     if (!decode(data, size, m) || m.nx <= 0 || m.ny <= 0 || static_cast<int64_t>(m.nx) * m.ny != m.ncells) return false;
     constexpr uint32_t stride = 24;
-    const auto nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
-    std::vector<uint8_t> cells(nx * ny * stride);
-    for (std::size_t i = 0; i < nx; ++i)
-        for (std::size_t jj = 0; jj < ny; ++jj) {
-            const std::size_t k = i * ny + jj, at = (jj * nx + i) * stride;
-            put_f32(cells, at, m.mean_z[k]);
-            put_f32(cells, at + 4, m.variance_z[k]);
-            std::memcpy(cells.data() + at + 8, &m.count[k], 4);
-            put_f32(cells, at + 12, m.max_z[k]);
-            put_f32(cells, at + 16, m.min_z[k]);
-            put_f32(cells, at + 20, m.age_s[k]);
-        }
+    const auto cells = grid_cells(m.nx, m.ny, stride, [&](uint8_t* at, std::size_t k) {
+        put_f32(at, m.mean_z[k]);
+        put_f32(at + 4, m.variance_z[k]);
+        std::memcpy(at + 8, &m.count[k], 4);
+        put_f32(at + 12, m.max_z[k]);
+        put_f32(at + 16, m.min_z[k]);
+        put_f32(at + 20, m.age_s[k]);
+    });
     JsonOut j(json);
     j.begin_object();
     grid_header(j, m.pose, m.residual_yaw, m.origin_x, m.origin_y, m.nx, m.resolution, stride);
@@ -106,20 +114,16 @@ bool traverse_grid(const uint8_t* data, std::size_t size, std::string& json)
     ugv::traversability_map_t m{};
     if (!decode(data, size, m) || m.nx <= 0 || m.ny <= 0 || static_cast<int64_t>(m.nx) * m.ny != m.ncells) return false;
     constexpr uint32_t stride = 32;  // 7 floats, the class byte, 3 bytes of padding
-    const auto nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
-    std::vector<uint8_t> cells(nx * ny * stride);
-    for (std::size_t i = 0; i < nx; ++i)
-        for (std::size_t jj = 0; jj < ny; ++jj) {
-            const std::size_t k = i * ny + jj, at = (jj * nx + i) * stride;
-            put_f32(cells, at, m.cost[k]);
-            put_f32(cells, at + 4, m.step_m[k]);
-            put_f32(cells, at + 8, m.drop_m[k]);
-            put_f32(cells, at + 12, m.slope_deg[k]);
-            put_f32(cells, at + 16, m.roughness_m[k]);
-            put_f32(cells, at + 20, m.span_m[k]);
-            put_f32(cells, at + 24, m.certainty[k]);
-            std::memcpy(cells.data() + at + 28, &m.cell_class[k], 1);
-        }
+    const auto cells = grid_cells(m.nx, m.ny, stride, [&](uint8_t* at, std::size_t k) {
+        put_f32(at, m.cost[k]);
+        put_f32(at + 4, m.step_m[k]);
+        put_f32(at + 8, m.drop_m[k]);
+        put_f32(at + 12, m.slope_deg[k]);
+        put_f32(at + 16, m.roughness_m[k]);
+        put_f32(at + 20, m.span_m[k]);
+        put_f32(at + 24, m.certainty[k]);
+        std::memcpy(at + 28, &m.cell_class[k], 1);
+    });
     JsonOut j(json);
     j.begin_object();
     grid_header(j, m.pose, m.residual_yaw, m.origin_x, m.origin_y, m.nx, m.resolution, stride);
@@ -155,12 +159,13 @@ bool point_cloud(const uint8_t* data, std::size_t size, std::string& json, doubl
     const auto n = static_cast<std::size_t>(m.npoints);
     std::vector<uint8_t> points(n * stride);
     for (std::size_t k = 0; k < n; ++k) {
-        put_f32(points, k * stride, m.x[k]);
-        put_f32(points, k * stride + 4, m.y[k]);
-        put_f32(points, k * stride + 8, m.z[k]);
-        put_f32(points, k * stride + 12, m.range[k]);
-        put_f32(points, k * stride + 16, m.variance[k]);
-        put_f32(points, k * stride + 20, m.time_offset[k]);
+        uint8_t* at = points.data() + k * stride;
+        put_f32(at, m.x[k]);
+        put_f32(at + 4, m.y[k]);
+        put_f32(at + 8, m.z[k]);
+        put_f32(at + 12, m.range[k]);
+        put_f32(at + 16, m.variance[k]);
+        put_f32(at + 20, m.time_offset[k]);
     }
     JsonOut j(json);
     j.begin_object().key("timestamp").time_us(m.utime).key("frame_id").string(kBodyFrame);

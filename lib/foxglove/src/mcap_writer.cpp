@@ -138,6 +138,15 @@ struct McapWriter::Impl
         offset += n;
     }
 
+    // A schema or channel record: written now, kept for the summary.
+    std::vector<uint8_t> definition(uint8_t opcode, const std::vector<uint8_t>& content)
+    {
+        std::vector<uint8_t> record;
+        put_record(record, opcode, content);
+        emit(record);
+        return record;
+    }
+
     const uint8_t* compress(std::size_t& size)
     {
         switch (options.compression) {
@@ -247,10 +256,7 @@ uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding
     put_string(content, encoding);
     put_u32(content, checked_u32(data.size(), "schema"));
     put_bytes(content, data.data(), data.size());
-    std::vector<uint8_t> record;
-    put_record(record, op_schema, content);
-    im.emit(record);
-    im.schema_records.push_back(std::move(record));
+    im.schema_records.push_back(im.definition(op_schema, content));
     return id;
 }
 
@@ -273,10 +279,7 @@ uint16_t McapWriter::add_channel(uint16_t schema_id, std::string_view topic, std
     }
     put_u32(content, checked_u32(map.size(), "metadata"));
     put_bytes(content, map.data(), map.size());
-    std::vector<uint8_t> record;
-    put_record(record, op_channel, content);
-    im.emit(record);
-    im.channel_records.push_back(std::move(record));
+    im.channel_records.push_back(im.definition(op_channel, content));
     im.channel_counts.push_back(0);
     im.chunk_index.emplace_back();
     return id;

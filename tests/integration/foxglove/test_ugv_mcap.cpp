@@ -55,6 +55,12 @@ TEST_CASE("ugv-mcap: --channels converts only the matching channels; the summary
     CHECK(err.find(": " + std::to_string(both) + " of ") != std::string::npos);
     CHECK(err.find("on 2 channels") != std::string::npos);
     CHECK(std::filesystem::file_size(dir / "o.mcap") > 100);
+    // --no-raw: the maps' grids alone, one message per map.
+    REQUIRE(mcap(dir, {log, dir / "g.mcap", "--channels", "TERRAIN_MAP", "--no-raw", "TERRAIN_MAP"}) == 0);
+    const std::string grids = test::read_file(dir / "e");
+    INFO(grids);
+    CHECK(grids.find(", " + std::to_string(counts.at("TERRAIN_MAP")) + " messages on 1 channels") != std::string::npos);
+    CHECK(mcap(dir, {log, dir / "g.mcap", "--no-raw", "[z-a]"}) == 2);
     REQUIRE(mcap(dir, {log, dir / "q.mcap", "--quiet"}) == 0);
     CHECK(test::read_file(dir / "e").empty());
 }

@@ -19,7 +19,7 @@ struct ConvertCounters
 {
     uint64_t events = 0;          // events read from the log
     uint64_t filtered = 0;        // on channels --channels leaves out
-    uint64_t converted = 0;       // events written to their raw topic
+    uint64_t converted = 0;       // events that decoded (each on all its topics)
     uint64_t unknown_type = 0;    // not a ugv type (no topic)
     uint64_t malformed = 0;       // a ugv fingerprint whose bytes do not decode, or another type than the channel's
     uint64_t messages = 0;        // MCAP messages written, all topics
@@ -28,7 +28,12 @@ struct ConvertCounters
 class LogConverter
 {
 public:
-    LogConverter(foxglove::McapWriter& writer, std::regex channels) : writer_(writer), channels_(std::move(channels)) {}
+    // channels: the channels converted; no_raw: those among them whose own JSON topic is left
+    // out (their Foxglove topics stay), e.g. the maps, whose cells the grids carry.
+    LogConverter(foxglove::McapWriter& writer, std::regex channels, std::regex no_raw = std::regex("$^"))
+        : writer_(writer), channels_(std::move(channels)), no_raw_(std::move(no_raw))
+    {
+    }
 
     void add(const LogEvent& event);
 
@@ -55,7 +60,7 @@ private:
     uint16_t schema_id(const foxglove::TopicSpec& spec);
 
     foxglove::McapWriter& writer_;
-    std::regex channels_;
+    std::regex channels_, no_raw_;
     std::unordered_map<std::string, Channel> by_name_;
     std::map<std::string, uint16_t> schemas_;  // by schema name
     foxglove::Converter converter_;
