@@ -1,31 +1,13 @@
 #include "json_out.hpp"
 
-#include <cstdio>
+#include "ugv/reflect.hpp"
 
 namespace ugv::foxglove::detail {
 
 JsonOut& JsonOut::string(std::string_view s)
 {
     sep();
-    out_ += '"';
-    for (const char c : s) {
-        switch (c) {
-        case '"': out_ += "\\\""; break;
-        case '\\': out_ += "\\\\"; break;
-        case '\n': out_ += "\\n"; break;
-        case '\r': out_ += "\\r"; break;
-        case '\t': out_ += "\\t"; break;
-        default:
-            if (static_cast<unsigned char>(c) < 0x20) {
-                char b[8];
-                std::snprintf(b, sizeof b, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-                out_ += b;
-            } else {
-                out_ += c;
-            }
-        }
-    }
-    out_ += '"';
+    out_ += reflect::json_quote(s);
     return *this;
 }
 
