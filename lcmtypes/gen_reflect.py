@@ -115,12 +115,23 @@ def main():
         lines.append("    w.end_object();")
         lines.append("}")
         lines.append("")
+    # Field metadata: what a generic consumer (JSON Schema, Foxglove) needs to know of a type.
+    for package, name, fields in structs:
+        lines.append(f"static const std::vector<FieldInfo> fields_{package}_{name} = {{")
+        for ftype, fname, dim in fields:
+            full = ftype if ftype in PRIMITIVES or "." in ftype else f"{package}.{ftype}"
+            fixed = dim if dim is not None and dim.isdigit() else "0"
+            length = dim if dim is not None and not dim.isdigit() else ""
+            lines.append(f'    {{"{fname}", "{full}", {fixed}, "{length}"}},')
+        lines.append("};")
+    lines.append("")
     lines.append("static const std::vector<TypeEntry>& type_table()")
     lines.append("{")
     lines.append("    static const std::vector<TypeEntry> table = {")
     for package, name, _ in structs:
         lines.append(f'        {{"{package}.{name}", {package}::{name}::getHash(), '
-                     f'&decode_and_print<{package}::{name}, &json_{package}_{name}>, &fits_{package}_{name}}},')
+                     f'&decode_and_print<{package}::{name}, &json_{package}_{name}>, &fits_{package}_{name}, '
+                     f'&fields_{package}_{name}}},')
     lines.append("    };")
     lines.append("    return table;")
     lines.append("}")

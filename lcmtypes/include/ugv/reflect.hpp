@@ -22,6 +22,22 @@ struct TypeInfo
 // Every ugv type, in the order of the .lcm files.
 std::vector<TypeInfo> all_types();
 
+// One field of a type, in wire order: what a generic consumer (a JSON Schema, the Foxglove
+// conversions) needs to know without the generated class.
+struct FieldInfo
+{
+    std::string_view name;
+    std::string_view type;          // an LCM primitive ("float", "int32_t", "string", ...) or "ugv.pose_t"
+    int fixed_length;               // > 0: an array of this many elements
+    std::string_view length_field;  // not empty: an array sized by this (earlier) field
+};
+
+// The fields of the named type (e.g. "ugv.pose_t"); nullptr when no ugv type has that name.
+const std::vector<FieldInfo>* fields_of(std::string_view type_name);
+
+// The name of the ugv type whose fingerprint the bytes start with; empty when none.
+std::string_view type_name_of(const void* data, std::size_t size);
+
 enum class DecodeResult { ok, unknown_type, malformed };
 
 // Decodes `size` bytes as the ugv type whose fingerprint they start with. On success fills
