@@ -10,6 +10,9 @@
 //       the maps of two logs against each other (map_diff.hpp).
 //   ugv-eval interlace LOG [--json]
 //       which sweep order of an interlacing laser fits a nodding log (interlace_command.hpp).
+//   ugv-eval attitude LOG [--turn-rate DPS] [--standing-speed MPS]
+//       roll/pitch/yaw error of the IMU's own output and of the pose against SIM_TRUTH,
+//       standing, straight and turning (attitude_command.hpp), one JSON line each.
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
@@ -28,6 +31,7 @@
 
 #include <ugv/terrain_map_t.hpp>
 
+#include "attitude_command.hpp"
 #include "floor_study.hpp"
 #include "ugv/simworld/height_field.hpp"
 #include "interlace_command.hpp"
@@ -209,11 +213,13 @@ int main(int argc, char** argv)
     ugv::eval::MapDiffCommand diff(app);  // its options are bound to its members
     ugv::eval::TraverseScoreCommand traverse(app);
     ugv::eval::InterlaceCommand interlace(app);
+    ugv::eval::AttitudeCommand attitude(app);
     CLI11_PARSE(app, argc, argv);
 
     if (diff.chosen()) return diff.run();
     if (traverse.chosen()) return traverse.run();
     if (interlace.chosen()) return interlace.run();
+    if (attitude.chosen()) return attitude.run();
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {
