@@ -16,7 +16,7 @@
 #   scored         ugv-eval attitude scored the IMU and the pose while turning;
 #   clean-stop     every process exits 0 on SIGTERM.
 source "$(dirname "$0")/bench.sh"
-scenario= seconds= imu_model= gps_model= seed=1
+scenario='' seconds='' imu_model='' gps_model='' seed=1
 while [ $# -gt 0 ]; do
     case $1 in
         --out) shift; export UGV_BENCH_OUT=$1 ;;
@@ -39,17 +39,7 @@ stack_has_world || { echo "attitude-error.sh: $STACK_BIN/ugv-sim has no world si
 bench_begin attitude-error 7841
 # The scenario with the chosen models, rewritten inside its [imu] and [gps] tables only.
 text=$(if [ -n "$scenario" ]; then cat "$scenario"; else "$STACK_BIN/ugv-sim" world --print-scenario; fi)
-rewrite() {  # rewrite TABLE MODEL: error_model = MODEL in [TABLE]; white drops the other model's keys
-    awk -v table="$1" -v model="$2" '
-        /^\[/ { inside = ($0 == "[" table "]") }
-        inside && /^error_model *=/ { if (!seen) print "error_model = \"" model "\""; seen = 1; next }
-        inside && model == "white" && table == "imu" && /^(tilt_time_constant_s|gyro_bias_walk_dps_per_sqrt_s|mag_disturbance_deg|angle_sigma_deg) *=/ { next }
-        inside && model == "white" && table == "gps" && /^(rtk_fixed|rtk_float|dgps|sbas|single)_(sigma_m|time_constant_s) *=/ { next }
-        { print }
-        /^\[/ && inside && !seen { print "error_model = \"" model "\""; seen = 1 }'
-}
-[ -n "$imu_model" ] && text=$(rewrite imu "$imu_model" <<<"$text")
-[ -n "$gps_model" ] && text=$(rewrite gps "$gps_model" <<<"$text")
+text=$(stack_scenario_models "$imu_model" "$gps_model" <<<"$text")
 printf '%s\n' "$text" >"$STACK_OUT/scenario.toml"
 world=(--scenario "$STACK_OUT/scenario.toml" --seed "$seed")
 [ -n "$seconds" ] && world+=(--duration "$seconds")

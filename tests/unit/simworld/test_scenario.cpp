@@ -6,6 +6,22 @@ using namespace ugv::simworld;
 using ugv::runtime::Config;
 using ugv::runtime::ConfigError;
 
+namespace {
+
+// The one-line error a scenario text gives, or "" when it parses.
+std::string error(const std::string& text)
+{
+    try {
+        Config c = Config::parse(text, "s.toml");
+        parse_scenario(c);
+    } catch (const ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
 TEST_CASE("the default scenario is the report's demonstration")
 {
     Config c = Config::parse(default_scenario_toml(), "default.toml");
@@ -25,15 +41,6 @@ TEST_CASE("the default scenario is the report's demonstration")
 
 TEST_CASE("a bad scenario value is one line FILE: KEY: why")
 {
-    auto error = [](const std::string& text) -> std::string {
-        try {
-            Config c = Config::parse(text, "s.toml");
-            parse_scenario(c);
-        } catch (const ConfigError& e) {
-            return e.what();
-        }
-        return "";
-    };
     CHECK(error("") == "");
     CHECK(error("[[segment]]\nkind = \"straight\"\nspeed_mps = 5.0\n") ==
           "s.toml: segment[0].speed_mps: 5 is out of range [0.01, 3]");
@@ -59,15 +66,6 @@ TEST_CASE("the sensors' error models: ahrs and markov by default, each model's k
     CHECK(sw.imu.angle_sigma_deg == 0.7);
     CHECK(sw.gps.error_model == "white");
 
-    auto error = [](const std::string& text) -> std::string {
-        try {
-            Config c = Config::parse(text, "s.toml");
-            parse_scenario(c);
-        } catch (const ConfigError& e) {
-            return e.what();
-        }
-        return "";
-    };
     CHECK(error("[imu]\nerror_model = \"kalman\"\n") ==
           "s.toml: imu.error_model: \"kalman\" is not one of \"ahrs\", \"white\"");
     CHECK(error("[imu]\nerror_model = \"white\"\nmag_disturbance_deg = 2.0\n") ==
