@@ -13,6 +13,9 @@
 //   ugv-eval coverage LOG [--ahead X0,X1] [--half-width W] [--turn DEG] [--window S] [--all]
 //       the known share of the area ahead of the vehicle in each map, summarised over the
 //       window after a turn (docs/simulator.md, "Two lasers").
+//   ugv-eval attitude LOG [--turn-rate DPS] [--standing-speed MPS]
+//       roll/pitch/yaw error of the IMU's own output and of the pose against SIM_TRUTH,
+//       standing, straight and turning (attitude_command.hpp), one JSON line each.
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]
 //       the report's Tables 3 and 4 on a simulated flat floor, next to the report's numbers.
 #include <lcm/lcm-cpp.hpp>
@@ -32,6 +35,7 @@
 
 #include <ugv/terrain_map_t.hpp>
 
+#include "attitude_command.hpp"
 #include "floor_study.hpp"
 #include "ugv/geometry/rotation.hpp"
 #include "ugv/simworld/height_field.hpp"
@@ -306,6 +310,7 @@ int main(int argc, char** argv)
     ugv::eval::MapDiffCommand diff(app);  // its options are bound to its members
     ugv::eval::TraverseScoreCommand traverse(app);
     ugv::eval::InterlaceCommand interlace(app);
+    ugv::eval::AttitudeCommand attitude(app);
     CLI11_PARSE(app, argc, argv);
 
     if (diff.chosen()) return diff.run();
@@ -320,6 +325,7 @@ int main(int argc, char** argv)
         co.area.x1_m = ahead[1];
         return coverage(cov_log, co);
     }
+    if (attitude.chosen()) return attitude.run();
     if (*cmp) {
         std::vector<Box> boxes;
         for (const std::string& s : box_args) {

@@ -9,6 +9,9 @@
 #   stack_start_devices [ARGS...] the four devices: `ugv-sim world` (ARGS go to it) when ugv-sim
 #                                 offers it and no real device is given, else stack_start_device
 #                                 for each
+#   stack_scenario_models IMU GPS <IN >OUT  a scenario with [imu] / [gps] error_model set
+#                                 (ahrs|white, markov|white; "" keeps it); white drops the
+#                                 other model's keys (and [imu] angle_sigma_deg: 0.7 again)
 #   stack_start_device NAME [ARGS...]  one device: the real one given by its variable (below),
 #                                 else its emulator `ugv-sim NAME --pty OUT/run/NAME ARGS`
 #   stack_start_daemons [NAME...] daemons (default: STACK_DAEMONS), config OUT/config/NAME.toml;
@@ -141,6 +144,18 @@ stack_start_devices() {
     fi
     for d in lms gps imu servo; do stack_start_device "$d" || return 1; done
 }
+
+stack_scenario_models() {
+    awk -v imu="$1" -v gps="$2" '
+        /^\[/ { table = $0; done = 0 }
+        { model = table == "[imu]" ? imu : table == "[gps]" ? gps : "" }
+        model != "" && /^error_model *=/ { next }
+        model == "white" && table == "[imu]" && /^(tilt_time_constant_s|gyro_bias_walk_dps_per_sqrt_s|mag_disturbance_deg|angle_sigma_deg) *=/ { next }
+        model == "white" && table == "[gps]" && /^(rtk_fixed|rtk_float|dgps|sbas|single)_(sigma_m|time_constant_s) *=/ { next }
+        { print }
+        model != "" && /^\[/ && !done { print "error_model = \"" model "\""; done = 1 }'
+}
+
 
 # stack_find_lasers RUN: the named lasers of the world's run folder (calibration/nodscan-NAME.toml),
 # their devices and daemon instances; none (one laser of a scenario without [[laser]]): as before.

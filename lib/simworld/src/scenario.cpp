@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace ugv::simworld {
 
@@ -159,6 +162,15 @@ void read_lasers(runtime::Config& root, Scenario& s)
     }
 }
 
+// Keys that only one error model reads: a clear error rather than a value silently unused.
+void only_with(const runtime::Config& c, bool model_chosen, std::initializer_list<std::string> keys,
+               const char* model)
+{
+    if (model_chosen) return;
+    for (const std::string& k : keys)
+        if (c.has(k)) c.fail(k, std::string("only used with ") + model + " (remove it, or choose that model)");
+}
+
 void read_sensors(runtime::Config& root, Scenario& s)
 {
     runtime::Config v = root.section("vehicle");
@@ -172,9 +184,26 @@ void read_sensors(runtime::Config& root, Scenario& s)
     s.gps.position_types = g.get_string("position_types", "NARROW_INT@0");
     s.gps.noise_scale = g.get_double("noise_scale", 1.0, 0.0, 100.0);
     s.gps.antenna_m = vec3(g, "antenna_m", {0.0, 0.0, 1.8}, 20);
+    s.gps.error_model = g.get_enum("error_model", "markov", {"markov", "white"});
+    const bool markov = s.gps.error_model == "markov";
+    for (auto [name, cls] : {std::pair{"rtk_fixed", &s.gps.rtk_fixed}, std::pair{"rtk_float", &s.gps.rtk_float},
+                             std::pair{"dgps", &s.gps.dgps}, std::pair{"sbas", &s.gps.sbas},
+                             std::pair{"single", &s.gps.single}}) {
+        const std::string sigma_key = std::string(name) + "_sigma_m", tau_key = std::string(name) + "_time_constant_s";
+        only_with(g, markov, {sigma_key, tau_key}, "error_model = \"markov\"");
+        cls->sigma_m = g.get_double(sigma_key, cls->sigma_m, 0.001, 100.0);
+        cls->time_constant_s = g.get_double(tau_key, cls->time_constant_s, 0.1, 86400.0);
+    }
 
     runtime::Config i = root.section("imu");
-    s.imu.angle_sigma_deg = i.get_double("angle_sigma_deg", 0.7, 0.0, 30.0);
+    s.imu.error_model = i.get_enum("error_model", "ahrs", {"ahrs", "white"});
+    const bool ahrs = s.imu.error_model == "ahrs";
+    only_with(i, ahrs, {"tilt_time_constant_s", "gyro_bias_walk_dps_per_sqrt_s", "mag_disturbance_deg"},
+              "error_model = \"ahrs\"");
+    s.imu.tilt_time_constant_s = i.get_double("tilt_time_constant_s", 10.0, 0.1, 1000.0);
+    s.imu.gyro_bias_walk_dps_per_sqrt_s = i.get_double("gyro_bias_walk_dps_per_sqrt_s", 0.0005, 0.0, 1.0);
+    s.imu.mag_disturbance_deg = i.get_double("mag_disturbance_deg", 1.0, 0.0, 45.0);
+    s.imu.angle_sigma_deg = i.get_double("angle_sigma_deg", ahrs ? 0.047 : 0.7, 0.0, 30.0);
     s.imu.rate_sigma_dps = i.get_double("rate_sigma_dps", 0.1, 0.0, 100.0);
     s.imu.accel_sigma_mps2 = i.get_double("accel_sigma_mps2", 0.02, 0.0, 100.0);
     s.imu.declination_deg = i.get_double("declination_deg", 0.0, -180, 180);
@@ -314,9 +343,24 @@ protocol = "novatel"
 position_types = "NARROW_INT@0"
 noise_scale = 1.0
 antenna_m = [0.0, 0.0, 1.8]
+error_model = "markov"          # or "white": then drop the <class>_ keys below
+rtk_fixed_sigma_m = 0.02
+rtk_fixed_time_constant_s = 30.0
+rtk_float_sigma_m = 0.15
+rtk_float_time_constant_s = 60.0
+dgps_sigma_m = 0.4
+dgps_time_constant_s = 60.0
+sbas_sigma_m = 0.8
+sbas_time_constant_s = 120.0
+single_sigma_m = 1.5
+single_time_constant_s = 120.0
 
 [imu]
-angle_sigma_deg = 0.7
+error_model = "ahrs"            # or "white": then drop the next three keys, angle_sigma_deg = 0.7
+tilt_time_constant_s = 10.0
+gyro_bias_walk_dps_per_sqrt_s = 0.0005
+mag_disturbance_deg = 1.0
+angle_sigma_deg = 0.047
 rate_sigma_dps = 0.1
 accel_sigma_mps2 = 0.02
 declination_deg = 0.0

@@ -83,8 +83,10 @@ TruthState World::truth(int64_t utime) const
     s.velocity_mps = p.speed_mps * heading;
     s.velocity_mps.z() = (after.position_m.z() - before.position_m.z()) / (2 * h);
     s.accel_mps2 = p.accel_along_mps2 * heading + p.speed_mps * p.yaw_rate_radps * left;
-    s.rate_body_radps = {(after.roll_rad - before.roll_rad) / (2 * h), (after.pitch_rad - before.pitch_rad) / (2 * h),
-                         p.yaw_rate_radps};
+    // Body rates from the two attitudes (not Euler-angle rates): a gyro integrated from them
+    // follows the true attitude, as the emulated IMU's filter needs.
+    const Eigen::AngleAxisd turn(before.orientation.conjugate() * after.orientation);
+    s.rate_body_radps = turn.axis() * (turn.angle() / (2 * h));
     return s;
 }
 

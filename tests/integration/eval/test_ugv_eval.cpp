@@ -10,6 +10,9 @@
 #include <vector>
 
 #include "ugv/simworld/height_field.hpp"
+#include "ugv/imu_t.hpp"
+#include "ugv/pose_t.hpp"
+#include "ugv/sim_truth_t.hpp"
 #include "ugv/terrain_map_t.hpp"
 #include "ugv_test/encoded.hpp"
 #include "ugv_test/process.hpp"
@@ -176,4 +179,85 @@ TEST_CASE("ugv-eval coverage: the known share of the area ahead, over the window
     CHECK(out.find("no map turned 120 deg") != std::string::npos);
     CHECK(eval(dir, {"coverage", path, "--ahead", "3,1"}, out) == 2);
     CHECK(out.find("--ahead 3,1: X1 must be greater than X0") != std::string::npos);
+}
+
+TEST_CASE("ugv-eval attitude: the IMU's and the pose's errors against SIM_TRUTH, standing, straight, turning")
+{
+    // Truth at 100 Hz: standing 0-1 s, straight east at 2 m/s 1-2 s, turning left at 10 deg/s
+    // 2-4 s. The IMU (50 Hz) is off by +1 deg in roll while turning and -0.5 deg in pitch
+    // while straight; the pose by +0.2 deg in roll throughout (and one initialising pose far
+    // off, not scored). No sample within 0.15 s of a change of motion (the yaw rate is taken
+    // over +/- 0.1 s).
+    test::TempDir dir;
+    const std::string path = dir / "att.lcm";
+    constexpr double kDeg = M_PI / 180.0;
+    auto yaw_at = [](double t) { return t < 2 ? 0.0 : 10.0 * kDeg * (t - 2); };
+    auto x_at = [](double t) { return t < 1 ? 0.0 : 2.0 * (std::min(t, 2.0) - 1); };
+    auto truth_roll = [](double t) { return 0.01 * std::sin(t); };  // a little terrain
+    {
+        lcm::LogFile log(path, "w");
+        for (int k = 0; k <= 400; ++k) {
+            const double t = k * 0.01;
+            sim_truth_t s{};
+            s.utime = kUtime + k * 10'000;
+            s.position[0] = x_at(t);
+            s.velocity[0] = t >= 1 ? 2.0 * std::cos(yaw_at(t)) : 0.0;
+            s.velocity[1] = t >= 1 ? 2.0 * std::sin(yaw_at(t)) : 0.0;
+            s.roll = truth_roll(t);
+            s.pitch = -0.02;
+            s.yaw = yaw_at(t);
+            s.orientation[0] = 1.0;
+            s.scenario = "test";
+            test::write_event(log, s.utime, "SIM_TRUTH", s);
+        }
+        auto near_change = [](double t) { return std::abs(t - 1) < 0.15 || std::abs(t - 2) < 0.15; };
+        for (int k = 0; k <= 200; ++k) {
+            const double t = k * 0.02;
+            if (near_change(t)) continue;
+            imu_t m{};
+            m.utime = kUtime + k * 20'000;
+            m.valid = imu_t::VALID_EULER;
+            m.roll = truth_roll(t) + (t > 2 ? 1.0 * kDeg : 0.0);
+            m.pitch = -0.02 + (t > 1 && t < 2 ? -0.5 * kDeg : 0.0);
+            m.yaw = yaw_at(t);
+            test::write_event(log, m.utime, "IMU", m);
+            pose_t p{};
+            p.utime = m.utime;
+            p.status = k == 0 ? pose_t::STATUS_INITIALIZING : pose_t::STATUS_OK;
+            p.roll = truth_roll(t) + (k == 0 ? 0.5 : 0.2 * kDeg);
+            p.pitch = -0.02;
+            p.yaw = yaw_at(t);
+            test::write_event(log, p.utime, "POSE", p);
+        }
+    }
+    std::string out;
+    REQUIRE(eval(dir, {"attitude", path}, out) == 0);
+    auto line = [&](const std::string& source, const std::string& motion) {
+        const std::string key = "{\"source\": \"" + source + "\", \"motion\": \"" + motion + "\"";
+        const auto at = out.find(key);
+        return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+    };
+    INFO(out);
+    CHECK(line("IMU", "turning").find("\"roll_rms_deg\": 1.0000, \"roll_max_deg\": 1.0000, \"pitch_rms_deg\": 0.0000") !=
+          std::string::npos);
+    CHECK(line("IMU", "straight").find("\"roll_rms_deg\": 0.0000, \"roll_max_deg\": 0.0000, \"pitch_rms_deg\": 0.5000") !=
+          std::string::npos);
+    CHECK(line("IMU", "standing").find("\"roll_max_deg\": 0.0000, \"pitch_rms_deg\": 0.0000") != std::string::npos);
+    // 201 IMU samples less 2 x 15 near the changes (t = 0.86 .. 1.14 and 1.86 .. 2.14).
+    CHECK(line("IMU", "all").find("\"samples\": 171") != std::string::npos);
+    CHECK(line("POSE", "all").find("\"samples\": 170, \"roll_rms_deg\": 0.2000, \"roll_max_deg\": 0.2000") !=
+          std::string::npos);
+    CHECK(out.find("1 pose(s) initialising") != std::string::npos);
+
+    // A log without the truth cannot be scored.
+    const std::string bare = dir / "bare.lcm";
+    {
+        lcm::LogFile log(bare, "w");
+        imu_t m{};
+        m.utime = kUtime;
+        m.valid = imu_t::VALID_EULER;
+        test::write_event(log, m.utime, "IMU", m);
+    }
+    CHECK(eval(dir, {"attitude", bare}, out) == 1);
+    CHECK(out.find("no SIM_TRUTH") != std::string::npos);
 }

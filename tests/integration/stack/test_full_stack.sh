@@ -8,7 +8,10 @@
 #   truth height field (cells within 0.3 m of a step left out): RMSE <= 0.06 m, |bias| <=
 #   0.05 m (the map inherits the pose's height error: the RTK receiver's height sigma is
 #   3 cm per fix), coverage >= 0.15. Measured: RMSE 0.02-0.035 m, bias -0.021..+0.011 m
-#   (docs/performance.md).
+#   (docs/performance.md). The simulator's IMU and GPS are pinned to the "white" error models:
+#   the GX1's filter ("ahrs", the default) tilts the map by its false tilt while the vehicle
+#   accelerates, which the pose does not yet remove (issue 26, item 2); these thresholds are
+#   the pose's under white noise.
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../../.." && pwd)
@@ -22,7 +25,8 @@ stack_init "$out" "udpm://239.255.76.67:7990?ttl=0&recv_buf_size=4194304"
 stack_set lms 'units = "cm"'
 stack_set terrain 'publish_hz = 4.0'
 stack_start_logger
-stack_start_devices --duration 25 || { echo "FAIL: the simulator did not come up"; cat "$out/stderr/sim-world.log"; exit 1; }
+"$bin/ugv-sim" world --print-scenario | stack_scenario_models white white >"$out/scenario.toml"
+stack_start_devices --duration 25 --scenario "$out/scenario.toml" || { echo "FAIL: the simulator did not come up"; cat "$out/stderr/sim-world.log"; exit 1; }
 stack_start_daemons
 while stack_alive sim-world; do sleep 0.5; done
 stack_stop

@@ -116,3 +116,32 @@ TEST_CASE("a bad [[laser]] table is one line naming the laser's key")
     for (int i = 0; i < 9; ++i) nine += "[[laser]]\nname = \"l" + std::to_string(i) + "\"\n";
     CHECK(error(nine) == "s.toml: laser: 9 lasers; at most 8");
 }
+
+TEST_CASE("the sensors' error models: ahrs and markov by default, each model's keys only with it")
+{
+    Config d = Config::parse(default_scenario_toml(), "default.toml");
+    const Scenario s = parse_scenario(d);
+    CHECK(s.imu.error_model == "ahrs");
+    CHECK(s.imu.tilt_time_constant_s == 10.0);
+    CHECK(s.imu.angle_sigma_deg == 0.047);
+    CHECK(s.gps.error_model == "markov");
+    CHECK(s.gps.rtk_fixed.sigma_m == 0.02);
+    CHECK(s.gps.dgps.time_constant_s == 60.0);
+    // "white": today's white angle noise by default.
+    Config w = Config::parse("[imu]\nerror_model = \"white\"\n[gps]\nerror_model = \"white\"\n", "w.toml");
+    const Scenario sw = parse_scenario(w);
+    CHECK(sw.imu.angle_sigma_deg == 0.7);
+    CHECK(sw.gps.error_model == "white");
+
+    CHECK(error("[imu]\nerror_model = \"kalman\"\n") ==
+          "s.toml: imu.error_model: \"kalman\" is not one of \"ahrs\", \"white\"");
+    CHECK(error("[imu]\nerror_model = \"white\"\nmag_disturbance_deg = 2.0\n") ==
+          "s.toml: imu.mag_disturbance_deg: only used with error_model = \"ahrs\" (remove it, or choose that model)");
+    CHECK(error("[imu]\ntilt_time_constant_s = 0.0\n") == "s.toml: imu.tilt_time_constant_s: 0 is out of range [0.1, 1000]");
+    CHECK(error("[imu]\ngyro_bias_walk_dps_per_sqrt_s = -1\n") ==
+          "s.toml: imu.gyro_bias_walk_dps_per_sqrt_s: -1 is out of range [0, 1]");
+    CHECK(error("[gps]\nerror_model = \"white\"\ndgps_time_constant_s = 30\n") ==
+          "s.toml: gps.dgps_time_constant_s: only used with error_model = \"markov\" (remove it, or choose that model)");
+    CHECK(error("[gps]\nrtk_float_sigma_m = 0\n") == "s.toml: gps.rtk_float_sigma_m: 0 is out of range [0.001, 100]");
+    CHECK(error("[gps]\nsingle_time_constant_s = \"long\"\n").find("s.toml: gps.single_time_constant_s: ") == 0);
+}

@@ -94,6 +94,11 @@ GpsEmulator::GpsEmulator(EmulatorConfig config, int64_t start_utime)
     : config_(std::move(config)), start_utime_(start_utime), now_utime_(start_utime), baud_(config_.baud),
       rng_(config_.seed)
 {
+    if (config_.markov) {
+        PositionErrorConfig m = *config_.markov;
+        m.scale = config_.noise_scale;
+        markov_.emplace(m);
+    }
     if (config_.preconfigured) {
         const double period = 1.0 / config_.rate_hz;
         if (config_.protocol == Protocol::novatel) {
@@ -203,13 +208,23 @@ nv::Position GpsEmulator::position_at(int64_t utime)
     p.position_type = position_type_at(elapsed);
     p.solution_status = p.position_type == nv::position_type::none ? nv::solution_status::insufficient_obs
                                                                    : nv::solution_status::sol_computed;
-    const double sigma = sigma_of(p.position_type);
-    std::normal_distribution<double> noise(0.0, sigma * config_.noise_scale);
+    double sigma = sigma_of(p.position_type), sigma_height = 1.5 * sigma;
     double lat = 0, lon = 0;
     truth(utime, lat, lon);
-    const double north = config_.noise_scale > 0 ? noise(rng_) : 0.0;
-    const double east = config_.noise_scale > 0 ? noise(rng_) : 0.0;
-    const double up = config_.noise_scale > 0 ? noise(rng_) * 1.5 : 0.0;
+    double north = 0, east = 0, up = 0;
+    if (markov_) {
+        const Ned3 e = markov_->at(utime, p.position_type);
+        north = e.north_m;
+        east = e.east_m;
+        up = e.up_m;
+        sigma = markov_->sigma_horizontal_m(p.position_type);
+        sigma_height = markov_->sigma_height_m(p.position_type);
+    } else if (config_.noise_scale > 0) {
+        std::normal_distribution<double> noise(0.0, sigma * config_.noise_scale);
+        north = noise(rng_);
+        east = noise(rng_);
+        up = noise(rng_) * 1.5;
+    }
     p.latitude_deg = lat + north / kEarthRadiusM / kDegToRad;
     p.longitude_deg = lon + east / (kEarthRadiusM * std::cos(lat * kDegToRad)) / kDegToRad;
     p.height_msl_m = (config_.trajectory ? config_.trajectory(utime).height_msl_m : config_.height_msl_m) + up;
@@ -217,7 +232,7 @@ nv::Position GpsEmulator::position_at(int64_t utime)
     p.datum_id = 61;
     p.sigma_latitude_m = sigma;
     p.sigma_longitude_m = sigma;
-    p.sigma_height_m = sigma * 1.5;
+    p.sigma_height_m = sigma_height;
     const nv::FixQuality q = nv::quality_from_position_type(p.solution_status, p.position_type);
     const bool diff = q == nv::FixQuality::dgps || q == nv::FixQuality::rtk_fixed || q == nv::FixQuality::rtk_float;
     p.station_id = diff ? "0" : "";

@@ -11,10 +11,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "position_error.hpp"
 #include "ugv/novatel/messages.hpp"
 
 namespace ugv::sim::gps {
@@ -50,6 +52,9 @@ struct EmulatorConfig
     double heading_deg = 0.0;         // clockwise from north
     Trajectory trajectory;            // when set, replaces the start point, speed and heading
     double noise_scale = 1.0;         // x the position type's sigma; 0 = exact
+    // Set: the position error is this Gauss-Markov model's (its sigmas x noise_scale, also
+    // reported); unset: white noise of sigma_of(type) x noise_scale, sigma_of reported.
+    std::optional<PositionErrorConfig> markov;
     uint32_t seed = 1;
     int leap_seconds = 18;
     std::vector<ScriptStep> script{{0.0, 16}};
@@ -105,6 +110,7 @@ private:
     std::vector<ActiveLog> logs_;
     std::string line_;             // a command being received
     std::mt19937 rng_;
+    std::optional<PositionErrorModel> markov_;
     int64_t next_garbage_utime_ = 0;
     uint64_t commands_ = 0;
     uint64_t bytes_damaged_ = 0;

@@ -1,2 +1,2 @@
 # ugv-sim gps: the NovAtel OEM4-class receiver emulator.
-ugv_sim_emulator(gps LIBS ugv_novatel COMMAND_LIBS ugv_io)
+ugv_sim_emulator(gps MODEL_SOURCES position_error.cpp LIBS ugv_novatel COMMAND_LIBS ugv_io)

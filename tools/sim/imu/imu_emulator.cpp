@@ -125,6 +125,12 @@ uint16_t u(int16_t v) { return static_cast<uint16_t>(v); }
 Gx1Emulator::Gx1Emulator(EmulatorConfig config, double power_on_s)
     : config_(std::move(config)), power_on_s_(power_on_s), rng_(config_.noise.seed)
 {
+    if (config_.ahrs) {
+        AhrsConfig a = *config_.ahrs;
+        a.mag_field_ned_gauss = config_.mag_field_ned_gauss;
+        ahrs_ = std::make_unique<AhrsModel>(a, config_.ahrs_start_s >= 0 ? config_.ahrs_start_s : power_on_s,
+                                            config_.attitude);
+    }
     eeprom_[gx1::eeprom::gyro_gain_scale] = config_.gyro_gain_scale;
     eeprom_[gx1::eeprom::accel_gain_scale] = config_.accel_gain_scale;
     eeprom_[gx1::eeprom::mag_gain_scale] = config_.mag_gain_scale;
@@ -241,17 +247,27 @@ std::vector<uint8_t> Gx1Emulator::build_data_reply(uint8_t command, double t_s, 
 {
     const NoiseModel& nm = config_.noise;
     NedMotion m = config_.attitude(t_s);
-    m.roll_rad += noise(nm.angle_sigma_rad);
-    m.pitch_rad += noise(nm.angle_sigma_rad);
-    m.yaw_rad += noise(nm.angle_sigma_rad);
+    // The sensors measure the true attitude; the attitude output is the filter's (or the
+    // truth), with white noise on top.
+    const Eigen::Matrix3d r_true = gx1::rotation_from_euler(m.roll_rad, m.pitch_rad, m.yaw_rad);
+    Eigen::Matrix3d r_out = r_true;
+    Eigen::Vector3d b_gauss = r_true.transpose() * config_.mag_field_ned_gauss;
+    if (ahrs_) {
+        m.rate_frd_radps += ahrs_->advance(t_s).gyro_bias_radps;
+        r_out = ahrs_->attitude(m);
+        b_gauss = ahrs_->measured_field(m);
+    }
+    Eigen::Vector3d rpy = gx1::euler_from_rotation(r_out);
+    m.roll_rad = rpy.x() + noise(nm.angle_sigma_rad);
+    m.pitch_rad = rpy.y() + noise(nm.angle_sigma_rad);
+    m.yaw_rad = std::remainder(rpy.z() + noise(nm.angle_sigma_rad), 2.0 * 3.14159265358979323846);
     const Eigen::Matrix3d r_ned_frd = gx1::rotation_from_euler(m.roll_rad, m.pitch_rad, m.yaw_rad);
     const double gyro = eeprom(gx1::eeprom::gyro_gain_scale), accel = eeprom(gx1::eeprom::accel_gain_scale),
                  mag = eeprom(gx1::eeprom::mag_gain_scale);
     // Specific force: the acceleration minus gravity (the reaction to gravity is "up" =
     // -down in NED), in sensor axes, in g.
     const Eigen::Vector3d f_g =
-        r_ned_frd.transpose() * (m.accel_ned_mps2 / gx1::standard_gravity_mps2 - Eigen::Vector3d(0, 0, 1.0));
-    const Eigen::Vector3d b_gauss = r_ned_frd.transpose() * config_.mag_field_ned_gauss;
+        r_true.transpose() * (m.accel_ned_mps2 / gx1::standard_gravity_mps2 - Eigen::Vector3d(0, 0, 1.0));
 
     std::vector<uint16_t> words;
     auto push_vectors = [&](bool with_mag) {

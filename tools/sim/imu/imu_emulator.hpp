@@ -13,24 +13,18 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "ahrs_model.hpp"
 #include "ugv/microstrain_gx1/scaling.hpp"
 
 namespace ugv::sim::imu {
 
-// The unit's attitude in ITS convention: roll, pitch, yaw (ZYX) of the sensor FRD axes
-// relative to NED, yaw from north clockwise; angular rate in sensor FRD axes.
-struct NedMotion
-{
-    double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
-    Eigen::Vector3d rate_frd_radps = Eigen::Vector3d::Zero();
-    Eigen::Vector3d accel_ned_mps2 = Eigen::Vector3d::Zero();  // kinematic acceleration (gravity apart)
-};
-using AttitudeFn = std::function<NedMotion(double t_s)>;
 
 // Level, constant heading.
 AttitudeFn fixed_attitude(double roll_rad, double pitch_rad, double yaw_rad);
@@ -65,7 +59,12 @@ struct EmulatorConfig
     uint8_t power_on_command = 0x31;
     uint16_t timer_at_power_on = 0;     // u16 timer value at power-on (to test the wrap)
     NoiseModel noise;
+    // The true motion. With ahrs set, the attitude the unit reports is its filter's (error
+    // model "ahrs": false tilt under acceleration, gyro bias, disturbed heading; the rates
+    // carry the same bias); without, the truth. White noise is added on top either way.
     AttitudeFn attitude = fixed_attitude(0, 0, 0);
+    std::optional<AhrsConfig> ahrs;
+    double ahrs_start_s = -1;  // the filter's grid origin (< 0: power-on)
     Eigen::Vector3d mag_field_ned_gauss{0.2, 0.0, 0.45};
     double temperature_c = 25.0;
 };
@@ -137,6 +136,7 @@ private:
     std::mt19937 rng_;
     std::normal_distribution<double> gauss_{0.0, 1.0};
     EmulatorCounters counters_;
+    std::unique_ptr<AhrsModel> ahrs_;
 };
 
 // Splits the output the way the real unit's USB-serial path does: random chunk sizes.

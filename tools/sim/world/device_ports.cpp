@@ -162,6 +162,15 @@ GpsPort::GpsPort(const std::string& link_path, const simworld::World& world, int
     c.protocol = s.gps.protocol == "nmea" ? gps::Protocol::nmea : gps::Protocol::novatel;
     c.noise_scale = s.gps.noise_scale;
     c.seed = seed;
+    if (s.gps.error_model == "markov") {
+        gps::PositionErrorConfig m;
+        const simworld::GpsClassError* classes[] = {&s.gps.rtk_fixed, &s.gps.rtk_float, &s.gps.dgps, &s.gps.sbas,
+                                                    &s.gps.single};
+        for (std::size_t i = 0; i < 5; ++i) m.classes[i] = {classes[i]->sigma_m, classes[i]->time_constant_s};
+        m.classes[static_cast<std::size_t>(gps::FixClass::other)].time_constant_s = s.gps.single.time_constant_s;
+        m.seed = seed ^ 0x6a5du;  // its own stream: line faults and other draws do not shift it
+        c.markov = m;
+    }
     c.script = gps::parse_script(s.gps.position_types);
     c.undulation_m = s.undulation_m;
     c.trajectory = [&world, undulation = s.undulation_m](int64_t utime) {
@@ -211,6 +220,16 @@ ImuPort::ImuPort(const std::string& link_path, const simworld::World& world, int
     c.noise.rate_sigma_radps = spec.rate_sigma_dps * deg;
     c.noise.accel_sigma_mps2 = spec.accel_sigma_mps2;
     c.noise.seed = seed;
+    if (spec.error_model == "ahrs") {
+        imu::AhrsConfig a;
+        a.time_constant_s = spec.tilt_time_constant_s;
+        a.gyro_bias_walk_radps_per_sqrt_s = spec.gyro_bias_walk_dps_per_sqrt_s * deg;
+        a.mag_disturbance_rad = spec.mag_disturbance_deg * deg;
+        a.seed = seed ^ 0x5eedu;  // its own stream: the white noise draws do not shift it
+        c.ahrs = a;
+        // The filter's steps on the scenario's clock, so one seed gives one error history.
+        c.ahrs_start_s = static_cast<double>(world.start_utime()) * 1e-6;
+    }
     // The unit's NED/FRD convention from the body's ENU/FLU truth: roll the same, pitch and
     // yaw rate negated (FRD's Z is down), yaw clockwise from north plus the declination.
     c.attitude = [&world, declination = spec.declination_deg * deg](double t_s) {

@@ -47,17 +47,37 @@ struct LaserSpec
 
 constexpr std::size_t kMaxLasers = 8;
 
+// One class of position type's error under the "markov" model.
+struct GpsClassError
+{
+    double sigma_m;          // horizontal 1-sigma per axis; height 1.5x
+    double time_constant_s;  // correlation time
+};
+
 struct GpsSpec
 {
     std::string protocol = "novatel";          // novatel | nmea
     std::string position_types = "NARROW_INT@0";  // the receiver's solution over time
     double noise_scale = 1.0;                  // x the position type's sigma
     Eigen::Vector3d antenna_m{0.0, 0.0, 1.8};  // body frame
+    // "markov": each class's error a first-order Gauss-Markov process (below); "white": an
+    // independent draw per fix with the fixed sigmas of the receiver emulator.
+    std::string error_model = "markov";
+    // rtk_fixed, rtk_float, dgps, sbas, single (scenario keys <class>_sigma_m and
+    // <class>_time_constant_s); any other type uses single's time constant and 10 m.
+    GpsClassError rtk_fixed{0.02, 30.0}, rtk_float{0.15, 60.0}, dgps{0.4, 60.0}, sbas{0.8, 120.0}, single{1.5, 120.0};
 };
 
 struct ImuSpec
 {
-    double angle_sigma_deg = 0.7;   // dynamic attitude error, 1-sigma per sample
+    // "ahrs": the unit's complementary filter (false tilt while the vehicle accelerates or
+    // turns, gyro bias walk, heading-dependent magnetometer error) plus the white noise
+    // below; "white": the white noise alone, standing for the whole dynamic error.
+    std::string error_model = "ahrs";
+    double tilt_time_constant_s = 10.0;               // the filter's pull toward gravity and north
+    double gyro_bias_walk_dps_per_sqrt_s = 0.0005;
+    double mag_disturbance_deg = 1.0;                 // amplitude of the heading-dependent yaw error
+    double angle_sigma_deg = 0.047;  // white, per sample: "ahrs" 0.047 (static), "white" 0.7 (+/-2 deg at 3 sigma)
     double rate_sigma_dps = 0.1;
     double accel_sigma_mps2 = 0.02;
     double declination_deg = 0.0;   // magnetic yaw = true yaw + this (the filter estimates it)
