@@ -42,24 +42,19 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
     return static_cast<std::size_t>(c);
 }
 
-// The smallest of v[0, n) at or above t.
-float min_from(const float* __restrict v, std::size_t n, float t)
-{
-    float best = kInf;
-    for (std::size_t u = 0; u < n; ++u) best = std::min(best, v[u] >= t ? v[u] : kInf);
-    return best;
-}
-
 // The value of rank k (from 0) among the finite v[0, n): what std::nth_element would put
 // at k. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
 // found from guess in steps that grow from `step`, then narrowed at the level the counts
-// point to, until it holds one value (or values with no float between them).
-float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step)
+// point to until it holds few values; those are gathered and the one of rank k among
+// them picked by insertion sort (the first of equal values in v's order, as a running
+// minimum would). buf holds n values.
+float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step, float* __restrict buf)
 {
+    constexpr std::size_t kFew = 12;
     float lo = -kInf, hi = kInf;
     std::size_t below_lo = 0, below_hi = n;
     float t = guess;
-    for (int iter = 0; iter < 64 && below_hi - below_lo > 1; ++iter) {
+    for (int iter = 0; iter < 64 && below_hi - below_lo > kFew; ++iter) {
         const std::size_t c = count_below(v, n, t);
         if (c <= k) {
             lo = t;
@@ -80,12 +75,31 @@ float select_rank(const float* v, std::size_t n, std::size_t k, float guess, flo
             step *= 2.0f;
         }
     }
-    if (below_hi - below_lo > 1 && std::nextafter(lo, kInf) < hi) {  // not narrowed: never seen, kept as a guard
+    // The values in [lo, hi), in v's order; rank k - below_lo among them.
+    std::size_t m = 0;
+    for (std::size_t u = 0; u < n; ++u) {
+        buf[m] = v[u];
+        m += v[u] >= lo && v[u] < hi ? 1 : 0;
+    }
+    const std::size_t r = k - below_lo;
+    if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
         std::vector<float> copy(v, v + n);
         std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
         return copy[k];
     }
-    return min_from(v, n, lo);
+    if (m > 2 * kFew) {  // not narrowed (values with no float between them): a partial selection
+        std::nth_element(buf, buf + r, buf + m);
+        return buf[r];
+    }
+    for (std::size_t a = 1; a < m; ++a) {  // stable: equal values keep their order
+        const float x = buf[a];
+        std::size_t b = a;
+        for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
+        buf[b] = x;
+    }
+    std::size_t first = r;  // the first of a run of equal values (+0 and -0)
+    while (first > 0 && buf[first - 1] == buf[r]) --first;
+    return buf[first];
 }
 
 // out[k] = min (or max) of in over the square window of half-width h around k; cells
@@ -220,6 +234,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     win_v_.resize(max_points);
     win_p_.resize(max_points);
     win_q_.resize(max_points);
+    win_sel_.resize(max_points);
+    win_off_.resize(max_points);
+    win_idx_.resize(max_points);
     column_sums_.resize(3 * w);
     double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -288,10 +305,27 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             m.spz = spz0 + spz1;
             m.sqz = sqz0 + sqz1;
             const PlaneFit first = plane_from_moments(m, nullptr);
-            // The second plane: without the points more than band off the first.
-            for (std::size_t u = 0; u < count; ++u) {
+            // The second plane: without the points more than band off the first. The test in
+            // a pass that vectorises, then the few points off it subtracted in order.
+            std::size_t outliers = 0;
+            {
+                const double fa = first.a, fgp = first.gp, fgq = first.gq;
+                const float* __restrict vv = win_v_.data();
+                const float* __restrict vp = win_p_.data();
+                const float* __restrict vq = win_q_.data();
+                uint8_t* __restrict off = win_off_.data();
+                for (std::size_t u = 0; u < count; ++u) {
+                    const double p = vp[u], q = vq[u], v = vv[u];
+                    off[u] = std::abs(v - (fa + fgp * p + fgq * q)) > band ? 1 : 0;
+                }
+                for (std::size_t u = 0; u < count; ++u) {
+                    win_idx_[outliers] = static_cast<uint32_t>(u);
+                    outliers += off[u];
+                }
+            }
+            for (std::size_t o = 0; o < outliers; ++o) {
+                const std::size_t u = win_idx_[o];
                 const double p = win_p_[u], q = win_q_[u], v = win_v_[u];
-                if (!(std::abs(v - (first.a + first.gp * p + first.gq * q)) > band)) continue;
                 m.s0 -= 1;
                 m.sp -= p;
                 m.sq -= q;
@@ -307,7 +341,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             const float* __restrict lp = win_p_.data();
             const float* __restrict lq = win_q_.data();
             for (std::size_t u = 0; u < count; ++u) lv[u] += zref - (fit.gp * lp[u] + fit.gq * lq[u]);
-            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f);
+            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
