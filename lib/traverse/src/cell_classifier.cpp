@@ -465,13 +465,22 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
     const std::size_t w = static_cast<std::size_t>(ny);
-    row_sums_.assign(n * kRowSums, 0.0f);
-    auto rows = [&](int which, int i) { return &row_sums_[(static_cast<std::size_t>(which) * nx + i) * w]; };
+    // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
+    // each computed as the column pass first needs it.
+    const int span = 2 * hp + 1;
+    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w);
+    auto rows = [&](int which, int p) {
+        return &row_sums_[(static_cast<std::size_t>(p % span) * kRowSums + static_cast<std::size_t>(which)) * w];
+    };
     const float z0 = static_cast<float>(g.position_m.z());
-    for (int i = 0; i < nx; ++i) {
-        line_w_.assign(w, 0.0f);
-        line_z_.assign(w, 0.0f);
-        line_o_.assign(w, 0.0f);
+    line_w_.resize(w);
+    line_z_.resize(w);
+    line_o_.resize(w);
+    auto row_pass = [&](int i) {
+        std::fill_n(rows(0, i), kRowSums * w, 0.0f);
+        std::fill(line_w_.begin(), line_w_.end(), 0.0f);
+        std::fill(line_z_.begin(), line_z_.end(), 0.0f);
+        std::fill(line_o_.begin(), line_o_.end(), 0.0f);
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
@@ -485,9 +494,11 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (int d = -hp; d <= hp; ++d)
             add_row_tap(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
                         rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
-    }
+    };
+    int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
     for (int i = 0; i < nx; ++i) {
+        for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
         moments_.assign(w * 10, 0.0f);
         float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];
