@@ -28,20 +28,24 @@ bool inside_footprint(const Footprint& f, double half_width_m, double x, double 
 // The map cell under each swept fine cell (-1: outside the map). Body -> map: turned by
 // +residual_yaw (cos c, sin s), then cells from the map's corner. One pass that vectorises;
 // the judging loop that follows reads the cells in order.
-// Cells [from, to) of the sweep into cell_of[0, to - from).
-void map_cells(const CandidateArcs::SweptCell* sweep, std::size_t from, std::size_t to, const TerrainGrid& g, float c,
-               float s, float inv, int32_t* __restrict cell_of)
+// Cells [from, to) of the sweep (its centres' x and y apart, so that the loop vectorises)
+// into cell_of[0, to - from).
+void map_cells(const float* __restrict xs, const float* __restrict ys, std::size_t from, std::size_t to,
+               const TerrainGrid& g, float c, float s, float inv, int32_t* __restrict cell_of)
 {
     const float ox = static_cast<float>(g.origin_x_m), oy = static_cast<float>(g.origin_y_m);
     const float nx = static_cast<float>(g.nx), ny = static_cast<float>(g.ny);
     const int32_t stride = g.ny;
-    for (std::size_t f = from; f < to; ++f) {
-        const float x = sweep[f].x_m, y = sweep[f].y_m;
+    const std::size_t n = to - from;
+    xs += from;
+    ys += from;
+    for (std::size_t f = 0; f < n; ++f) {
+        const float x = xs[f], y = ys[f];
         const float fi = (c * x - s * y - ox) * inv, fj = (s * x + c * y - oy) * inv;
         const bool inside = fi >= 0.0f && fj >= 0.0f && fi < nx && fj < ny;
         // Truncation is floor for the non-negative values kept.
         const int32_t cell = static_cast<int32_t>(inside ? fi : 0.0f) * stride + static_cast<int32_t>(inside ? fj : 0.0f);
-        cell_of[f - from] = inside ? cell : -1;
+        cell_of[f] = inside ? cell : -1;
     }
 }
 
@@ -138,6 +142,13 @@ CandidateArcs::CandidateArcs(const ArcSetConfig& c, const Footprint& f, double r
         std::sort(cells.begin(), cells.end(), [](const SweptCell& a, const SweptCell& b) {
             return a.s_m != b.s_m ? a.s_m < b.s_m : (a.x_m != b.x_m ? a.x_m < b.x_m : a.y_m < b.y_m);
         });
+        std::vector<float> xs(cells.size()), ys(cells.size());
+        for (std::size_t u = 0; u < cells.size(); ++u) {
+            xs[u] = cells[u].x_m;
+            ys[u] = cells[u].y_m;
+        }
+        sweep_x_.push_back(std::move(xs));
+        sweep_y_.push_back(std::move(ys));
         sweeps_.push_back(std::move(cells));
     }
 }
@@ -171,31 +182,35 @@ void CandidateArcs::judge(const TerrainGrid& g, const TraversabilityLayers& laye
         double swept = 0, unknown = 0;
         int known = 0;
         double cost = 0.0;
-        for (std::size_t f = 0; f < sweep.size(); ++f) {
-            if (f % kBlock == 0)
-                map_cells(sweep.data(), f, std::min(sweep.size(), f + kBlock), g, static_cast<float>(c),
-                          static_cast<float>(sn), static_cast<float>(inv), cell_of_.data());
-            const int32_t cell = cell_of_[f % kBlock];
-            if (cell < 0) {
-                swept += 0.25;
-                unknown += 0.25;
-                continue;
-            }
-            const std::size_t k = static_cast<std::size_t>(cell);
-            if (seen_[k] == stamp_) continue;
-            seen_[k] = stamp_;
-            const CellClass cls = layers.cell_class[k];
-            if (cls == CellClass::obstacle || cls == CellClass::negative_obstacle) {
-                v.clear_distance_m = sweep[f].s_m;
-                v.blocked = true;
-                break;
-            }
-            swept += 1;
-            if (cls == CellClass::unknown) {
-                unknown += 1;
-            } else {
-                ++known;
-                cost += layers.cost[k];
+        bool hit = false;
+        for (std::size_t from = 0; from < sweep.size() && !hit; from += kBlock) {
+            const std::size_t to = std::min(sweep.size(), from + kBlock);
+            map_cells(sweep_x_[a].data(), sweep_y_[a].data(), from, to, g, static_cast<float>(c), static_cast<float>(sn),
+                      static_cast<float>(inv), cell_of_.data());
+            for (std::size_t f = from; f < to; ++f) {
+                const int32_t cell = cell_of_[f - from];
+                if (cell < 0) {
+                    swept += 0.25;
+                    unknown += 0.25;
+                    continue;
+                }
+                const std::size_t k = static_cast<std::size_t>(cell);
+                if (seen_[k] == stamp_) continue;
+                seen_[k] = stamp_;
+                const CellClass cls = layers.cell_class[k];
+                if (cls == CellClass::obstacle || cls == CellClass::negative_obstacle) {
+                    v.clear_distance_m = sweep[f].s_m;
+                    v.blocked = true;
+                    hit = true;
+                    break;
+                }
+                swept += 1;
+                if (cls == CellClass::unknown) {
+                    unknown += 1;
+                } else {
+                    ++known;
+                    cost += layers.cost[k];
+                }
             }
         }
         v.unknown_fraction = swept > 0 ? unknown / swept : 1.0;

@@ -42,24 +42,19 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
     return static_cast<std::size_t>(c);
 }
 
-// The smallest of v[0, n) at or above t.
-float min_from(const float* __restrict v, std::size_t n, float t)
-{
-    float best = kInf;
-    for (std::size_t u = 0; u < n; ++u) best = std::min(best, v[u] >= t ? v[u] : kInf);
-    return best;
-}
-
 // The value of rank k (from 0) among the finite v[0, n): what std::nth_element would put
 // at k. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
 // found from guess in steps that grow from `step`, then narrowed at the level the counts
-// point to, until it holds one value (or values with no float between them).
-float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step)
+// point to until it holds few values; those are gathered and the one of rank k among
+// them picked by insertion sort (the first of equal values in v's order, as a running
+// minimum would). buf holds n values.
+float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step, float* __restrict buf)
 {
+    constexpr std::size_t kFew = 12;
     float lo = -kInf, hi = kInf;
     std::size_t below_lo = 0, below_hi = n;
     float t = guess;
-    for (int iter = 0; iter < 64 && below_hi - below_lo > 1; ++iter) {
+    for (int iter = 0; iter < 64 && below_hi - below_lo > kFew; ++iter) {
         const std::size_t c = count_below(v, n, t);
         if (c <= k) {
             lo = t;
@@ -80,12 +75,31 @@ float select_rank(const float* v, std::size_t n, std::size_t k, float guess, flo
             step *= 2.0f;
         }
     }
-    if (below_hi - below_lo > 1 && std::nextafter(lo, kInf) < hi) {  // not narrowed: never seen, kept as a guard
+    // The values in [lo, hi), in v's order; rank k - below_lo among them.
+    std::size_t m = 0;
+    for (std::size_t u = 0; u < n; ++u) {
+        buf[m] = v[u];
+        m += v[u] >= lo && v[u] < hi ? 1 : 0;
+    }
+    const std::size_t r = k - below_lo;
+    if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
         std::vector<float> copy(v, v + n);
         std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
         return copy[k];
     }
-    return min_from(v, n, lo);
+    if (m > 2 * kFew) {  // not narrowed (values with no float between them): a partial selection
+        std::nth_element(buf, buf + r, buf + m);
+        return buf[r];
+    }
+    for (std::size_t a = 1; a < m; ++a) {  // stable: equal values keep their order
+        const float x = buf[a];
+        std::size_t b = a;
+        for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
+        buf[b] = x;
+    }
+    std::size_t first = r;  // the first of a run of equal values (+0 and -0)
+    while (first > 0 && buf[first - 1] == buf[r]) --first;
+    return buf[first];
 }
 
 // out[k] = min (or max) of in over the square window of half-width h around k; cells
@@ -220,6 +234,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     win_v_.resize(max_points);
     win_p_.resize(max_points);
     win_q_.resize(max_points);
+    win_sel_.resize(max_points);
+    win_off_.resize(max_points);
+    win_idx_.resize(max_points);
     column_sums_.resize(3 * w);
     double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -288,10 +305,27 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             m.spz = spz0 + spz1;
             m.sqz = sqz0 + sqz1;
             const PlaneFit first = plane_from_moments(m, nullptr);
-            // The second plane: without the points more than band off the first.
-            for (std::size_t u = 0; u < count; ++u) {
+            // The second plane: without the points more than band off the first. The test in
+            // a pass that vectorises, then the few points off it subtracted in order.
+            std::size_t outliers = 0;
+            {
+                const double fa = first.a, fgp = first.gp, fgq = first.gq;
+                const float* __restrict vv = win_v_.data();
+                const float* __restrict vp = win_p_.data();
+                const float* __restrict vq = win_q_.data();
+                uint8_t* __restrict off = win_off_.data();
+                for (std::size_t u = 0; u < count; ++u) {
+                    const double p = vp[u], q = vq[u], v = vv[u];
+                    off[u] = std::abs(v - (fa + fgp * p + fgq * q)) > band ? 1 : 0;
+                }
+                for (std::size_t u = 0; u < count; ++u) {
+                    win_idx_[outliers] = static_cast<uint32_t>(u);
+                    outliers += off[u];
+                }
+            }
+            for (std::size_t o = 0; o < outliers; ++o) {
+                const std::size_t u = win_idx_[o];
                 const double p = win_p_[u], q = win_q_[u], v = win_v_[u];
-                if (!(std::abs(v - (first.a + first.gp * p + first.gq * q)) > band)) continue;
                 m.s0 -= 1;
                 m.sp -= p;
                 m.sq -= q;
@@ -307,7 +341,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             const float* __restrict lp = win_p_.data();
             const float* __restrict lq = win_q_.data();
             for (std::size_t u = 0; u < count; ++u) lv[u] += zref - (fit.gp * lp[u] + fit.gq * lq[u]);
-            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f);
+            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
@@ -431,13 +465,22 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
     const std::size_t w = static_cast<std::size_t>(ny);
-    row_sums_.assign(n * kRowSums, 0.0f);
-    auto rows = [&](int which, int i) { return &row_sums_[(static_cast<std::size_t>(which) * nx + i) * w]; };
+    // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
+    // each computed as the column pass first needs it.
+    const int span = 2 * hp + 1;
+    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w);
+    auto rows = [&](int which, int p) {
+        return &row_sums_[(static_cast<std::size_t>(p % span) * kRowSums + static_cast<std::size_t>(which)) * w];
+    };
     const float z0 = static_cast<float>(g.position_m.z());
-    for (int i = 0; i < nx; ++i) {
-        line_w_.assign(w, 0.0f);
-        line_z_.assign(w, 0.0f);
-        line_o_.assign(w, 0.0f);
+    line_w_.resize(w);
+    line_z_.resize(w);
+    line_o_.resize(w);
+    auto row_pass = [&](int i) {
+        std::fill_n(rows(0, i), kRowSums * w, 0.0f);
+        std::fill(line_w_.begin(), line_w_.end(), 0.0f);
+        std::fill(line_z_.begin(), line_z_.end(), 0.0f);
+        std::fill(line_o_.begin(), line_o_.end(), 0.0f);
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
@@ -451,9 +494,11 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (int d = -hp; d <= hp; ++d)
             add_row_tap(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
                         rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
-    }
+    };
+    int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
     for (int i = 0; i < nx; ++i) {
+        for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
         moments_.assign(w * 10, 0.0f);
         float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];

@@ -73,6 +73,7 @@ private:
     double resolution_m_;
     std::vector<double> curvatures_;
     std::vector<std::vector<SweptCell>> sweeps_;  // cells of half the resolution, sorted by s
+    std::vector<std::vector<float>> sweep_x_, sweep_y_;  // their centres' x and y apart (judge's loop)
     mutable std::vector<uint32_t> seen_;          // per map cell: the last arc that counted it
     mutable std::vector<int32_t> cell_of_;        // per swept fine cell: its map cell
     mutable uint32_t stamp_ = 0;
