@@ -401,7 +401,7 @@ inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, fl
 }
 
 template <typename Grid>
-std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
+std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch, bool split)
 {
     const uint64_t fused_before = counters_.points_fused;
     const std::size_t n = batch.count;
@@ -412,6 +412,37 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
     // The batch's time span: the poses at its two ends bound every point's pose.
     float t_min = 0.0f, t_max = 0.0f;
     detail::value_range(batch.time_offset_s, n, t_min, t_max);
+    if (split && config_.split_long_batches && t_min <= t_max && t_max - t_min > config_.max_interpolation_span_s) {
+        // A long batch (a slow scan, a lidar's sweep, clouds joined) in runs of consecutive
+        // points each spanning at most max_interpolation_span_s, each fused as one batch.
+        // A point whose time is not finite joins the run it is in; the run then spans an
+        // infinity and goes point by point, which rejects it.
+        const float span = static_cast<float>(config_.max_interpolation_span_s);
+        std::size_t first = 0;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        auto run = [&](std::size_t end) {
+            PointBatch part = batch;
+            part.count = end - first;
+            for (const float** a : {&part.x_m, &part.y_m, &part.z_m, &part.range_m, &part.variance_m2, &part.time_offset_s})
+                *a += first;
+            fuse_into(grid, part, false);
+            first = end;
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+            const float t = batch.time_offset_s[k];
+            if (!(std::abs(t) <= std::numeric_limits<float>::max())) continue;
+            const float new_lo = std::min(lo, t), new_hi = std::max(hi, t);
+            if (new_hi - new_lo > span) {
+                run(k);
+                lo = hi = t;
+            } else {
+                lo = new_lo;
+                hi = new_hi;
+            }
+        }
+        run(n);
+        return static_cast<std::size_t>(counters_.points_fused - fused_before);
+    }
     const Frame frame = local_frame();
     Pose p0, p1;
     const int64_t t_max_us = t_min <= t_max ? batch.utime_us + std::llround(t_max * 1e6) : 0;
@@ -569,8 +600,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
 
 std::size_t TerrainMapper::fuse(const PointBatch& batch)
 {
-    if (ego_) return fuse_into(*ego_, batch);
-    return fuse_into(*world_, batch);
+    if (ego_) return fuse_into(*ego_, batch, true);
+    return fuse_into(*world_, batch, true);
 }
 
 void TerrainMapper::snapshot(MapSnapshot& out) const

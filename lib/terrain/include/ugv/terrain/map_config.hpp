@@ -34,7 +34,10 @@ struct MapConfig
     bool spread_exact = false;
     double min_variance_m2 = 1e-6;  // floor of a point's variance (a zero variance would be an infinite weight)
     int64_t pose_history_us = 2'000'000;
-    double max_interpolation_span_s = 0.1;  // longer point batches are transformed point by point
+    double max_interpolation_span_s = 0.1;  // longer point batches are fused in runs that span at most this
+    // false: a longer batch goes point by point, each point's pose interpolated on its own
+    // (the scalar reference the runs are tested against).
+    bool split_long_batches = true;
 
     int nx() const { return static_cast<int>(std::lround(extent_x_m / grid_size_m)); }
     int ny() const { return static_cast<int>(std::lround(extent_y_m / grid_size_m)); }

@@ -158,8 +158,9 @@ private:
     Frame local_frame() const;
     void move_egocentric(const Pose& pose);
     void move_world(const Pose& pose);
+    // split: a batch spanning more than max_interpolation_span_s is fused in runs that do not.
     template <typename Grid>
-    std::size_t fuse_into(Grid& grid, const PointBatch& batch);
+    std::size_t fuse_into(Grid& grid, const PointBatch& batch, bool split);
     template <typename Grid>
     void fuse_point(Grid& grid, float x, float y, double z, float variance_m2, TimeTick t_ms);
     // Section 3.5: spread_point adds the point to the pending summed-area corners (or, with
