@@ -417,7 +417,6 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch, bool s
         // points each spanning at most max_interpolation_span_s, each fused as one batch.
         // A point whose time is not finite joins the run it is in; the run then spans an
         // infinity and goes point by point, which rejects it.
-        const float span = static_cast<float>(config_.max_interpolation_span_s);
         std::size_t first = 0;
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         auto run = [&](std::size_t end) {
@@ -432,7 +431,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch, bool s
             const float t = batch.time_offset_s[k];
             if (!(std::abs(t) <= std::numeric_limits<float>::max())) continue;
             const float new_lo = std::min(lo, t), new_hi = std::max(hi, t);
-            if (new_hi - new_lo > span) {
+            if (static_cast<double>(new_hi - new_lo) > config_.max_interpolation_span_s) {  // as the run's own test
                 run(k);
                 lo = hi = t;
             } else {

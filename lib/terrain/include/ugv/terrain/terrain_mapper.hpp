@@ -141,6 +141,11 @@ public:
 
     void clear();
 
+    // The pending spread shares (section 3.5, summed-area form) into the cells. The map does
+    // this itself before it moves or is read; public for benchmarks that pace it. Const:
+    // what the map says does not change, only where its sums are kept.
+    void flush_spread() const;
+
     // The map's content and where it lies (egocentric mode, once a pose has placed it and
     // any restore was decided); false otherwise, and out is left as it was.
     bool save_state(MapState& out) const;
@@ -170,9 +175,6 @@ private:
     void spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     template <typename Grid>
     void spread_exact(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
-    // The pending spread shares into the cells: before the map moves or is read. Const:
-    // what the map says does not change, only where its sums are kept.
-    void flush_spread() const;
     Eigen::Vector2d reference_world(const Pose& pose) const;
     // A time on the tallies' clock (whole ms since epoch_us_).
     TimeTick tick_of(int64_t utime_us) const;
