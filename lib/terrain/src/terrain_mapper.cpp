@@ -8,6 +8,7 @@
 
 #include "cell_fusion.hpp"
 #include "kernels/kernel_table.hpp"
+#include "spread_sums.hpp"
 #include "ugv/geometry/rotation.hpp"
 #include "ugv/terrain/point_variance.hpp"
 #include "ugv/terrain/spread.hpp"
@@ -92,6 +93,19 @@ TerrainMapper::TerrainMapper(const MapConfig& config)
         world_ = std::make_unique<WorldGrid>(static_cast<int>(std::ceil(side_m / config_.grid_size_m)),
                                              config_.grid_size_m);
     }
+    if (config_.spread && !config_.spread_exact) {
+        const int rows = ego_ ? ego_->nx() : world_->nx(), columns = ego_ ? ego_->ny() : world_->ny();
+        spread_sums_ = std::make_unique<detail::SpreadSums>(rows, columns);
+    }
+}
+
+void TerrainMapper::flush_spread() const
+{
+    if (!spread_sums_ || !spread_sums_->pending()) return;
+    if (ego_)
+        spread_sums_->flush(*ego_);
+    else
+        spread_sums_->flush(*world_);
 }
 
 TerrainMapper::~TerrainMapper() = default;
@@ -100,6 +114,7 @@ TerrainMapper& TerrainMapper::operator=(TerrainMapper&&) noexcept = default;
 
 void TerrainMapper::clear()
 {
+    if (spread_sums_) spread_sums_->discard();
     if (ego_) ego_->clear();
     if (world_) world_->clear();
     history_.clear();
@@ -123,6 +138,7 @@ void TerrainMapper::rebase_ticks()
     constexpr int64_t kLimitUs = (int64_t{1} << 30) * 1000;
     const int64_t newest = history_.newest().utime_us;
     if (newest - epoch_us_ < kLimitUs) return;
+    flush_spread();  // the pending shares' time is on the old epoch
     const int64_t shift_ms = (newest - epoch_us_) / 1000;
     epoch_us_ += shift_ms * 1000;
     CellArray& cells = ego_ ? ego_->cells() : world_->cells();
@@ -182,6 +198,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     Eigen::Vector2d local = rotation_2d(-anchor_yaw_rad_) * (ref - anchor_m_);
     if (local.norm() > std::max(config_.extent_x_m, config_.extent_y_m)) {
         // A jump larger than the map (GPS reacquired, datum change): nothing in it still holds.
+        if (spread_sums_) spread_sums_->discard();
         ego_->clear();
         anchor_m_ = ref;
         anchor_yaw_rad_ = yaw;
@@ -195,6 +212,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     if (std::abs(d_yaw) >= config_.theta_d_rad) {
         const double steps = std::trunc(d_yaw / config_.theta_d_rad);
         const double angle = steps * config_.theta_d_rad;
+        flush_spread();
         counters_.cells_dropped += static_cast<uint64_t>(ego_->transform(angle, local.x(), local.y()));
         anchor_m_ = ref;
         anchor_yaw_rad_ = wrap_angle(anchor_yaw_rad_ + angle);
@@ -208,6 +226,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     const Eigen::Vector2d ex(std::cos(anchor_yaw_rad_), std::sin(anchor_yaw_rad_));
     const Eigen::Vector2d ey(-ex.y(), ex.x());
     const int rows = static_cast<int>(std::floor(local.x() / g + 1e-9));
+    if (rows != 0) flush_spread();
     if (rows > 0) ego_->wrap_forward(rows);
     if (rows < 0) ego_->wrap_backward(-rows);
     if (rows != 0) {
@@ -218,6 +237,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     // once it adds up to whole columns the map is re-centred on the vehicle.
     const int columns = static_cast<int>(std::trunc(local.y() / g + (local.y() > 0 ? 1e-9 : -1e-9)));
     if (columns != 0) {
+        flush_spread();
         counters_.cells_dropped += static_cast<uint64_t>(ego_->transform(0.0, 0.0, columns * g));
         anchor_m_ += columns * g * ey;
         ++counters_.recentres;
@@ -271,6 +291,7 @@ void TerrainMapper::decide_restore(const Pose& first)
 bool TerrainMapper::save_state(MapState& out) const
 {
     if (!ego_ || !anchored_ || pending_restore_) return false;
+    flush_spread();
     const int nx = config_.nx(), ny = config_.ny();
     out.nx = nx;
     out.ny = ny;
@@ -296,18 +317,36 @@ bool TerrainMapper::save_state(MapState& out) const
 
 void TerrainMapper::move_world(const Pose& pose)
 {
+    flush_spread();
     counters_.wraps += static_cast<uint64_t>(world_->follow(reference_world(pose)));
 }
 
 template <typename Grid>
-void TerrainMapper::spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2,
-                                 float w, TimeTick t_ms)
+void TerrainMapper::spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms)
+{
+    if (!spread_sums_) {
+        spread_exact(grid, x, y, z, variance_m2, w, t_ms);
+        return;
+    }
+    const float inv_g = static_cast<float>(1.0 / config_.grid_size_m);
+    const float half_width = std::min(std::sqrt(variance_m2) * inv_g, static_cast<float>(config_.spread_max_cells));
+    if (!spread_sums_->add(x * inv_g, (y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, w,
+                           static_cast<float>(config_.grid_size_m), static_cast<float>(z), t_ms)) {
+        ++counters_.rejected_outside_map;
+        return;
+    }
+    ++counters_.points_fused;
+    ++counters_.points_spread;
+}
+
+template <typename Grid>
+void TerrainMapper::spread_exact(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms)
 {
     const float inv_g = static_cast<float>(1.0 / config_.grid_size_m);
     const float g = static_cast<float>(config_.grid_size_m);
     const float half_width = std::min(std::sqrt(variance_m2) * inv_g, static_cast<float>(config_.spread_max_cells));
-    const AxisFootprint fx = axis_footprint(x * inv_g, half_width, rows);
-    const AxisFootprint fy = axis_footprint((y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, cols);
+    const AxisFootprint fx = axis_footprint(x * inv_g, half_width, grid.nx());
+    const AxisFootprint fy = axis_footprint((y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, grid.ny());
     if (fx.count == 0 || fy.count == 0) {
         ++counters_.rejected_outside_map;
         return;
@@ -348,7 +387,7 @@ inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, fl
     variance_m2 = std::max(variance_m2, static_cast<float>(config_.min_variance_m2));
     const float w = config_.statistics == StatisticsKind::classical ? 1.0f : 1.0f / variance_m2;
     if (config_.spread && variance_m2 > static_cast<float>(config_.grid_size_m * config_.grid_size_m)) {
-        spread_point(grid, grid.nx(), grid.ny(), x, y, z, variance_m2, w, t_ms);
+        spread_point(grid, x, y, z, variance_m2, w, t_ms);
         return;
     }
     float x_rel = 0.0f, y_rel = 0.0f;
@@ -362,7 +401,7 @@ inline void TerrainMapper::fuse_point(Grid& grid, float x, float y, double z, fl
 }
 
 template <typename Grid>
-std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
+std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch, bool split)
 {
     const uint64_t fused_before = counters_.points_fused;
     const std::size_t n = batch.count;
@@ -373,6 +412,36 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
     // The batch's time span: the poses at its two ends bound every point's pose.
     float t_min = 0.0f, t_max = 0.0f;
     detail::value_range(batch.time_offset_s, n, t_min, t_max);
+    if (split && config_.split_long_batches && t_min <= t_max && t_max - t_min > config_.max_interpolation_span_s) {
+        // A long batch (a slow scan, a lidar's sweep, clouds joined) in runs of consecutive
+        // points each spanning at most max_interpolation_span_s, each fused as one batch.
+        // A point whose time is not finite joins the run it is in; the run then spans an
+        // infinity and goes point by point, which rejects it.
+        std::size_t first = 0;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        auto run = [&](std::size_t end) {
+            PointBatch part = batch;
+            part.count = end - first;
+            for (const float** a : {&part.x_m, &part.y_m, &part.z_m, &part.range_m, &part.variance_m2, &part.time_offset_s})
+                *a += first;
+            fuse_into(grid, part, false);
+            first = end;
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+            const float t = batch.time_offset_s[k];
+            if (!(std::abs(t) <= std::numeric_limits<float>::max())) continue;
+            const float new_lo = std::min(lo, t), new_hi = std::max(hi, t);
+            if (static_cast<double>(new_hi - new_lo) > config_.max_interpolation_span_s) {  // as the run's own test
+                run(k);
+                lo = hi = t;
+            } else {
+                lo = new_lo;
+                hi = new_hi;
+            }
+        }
+        run(n);
+        return static_cast<std::size_t>(counters_.points_fused - fused_before);
+    }
     const Frame frame = local_frame();
     Pose p0, p1;
     const int64_t t_max_us = t_min <= t_max ? batch.utime_us + std::llround(t_max * 1e6) : 0;
@@ -487,8 +556,8 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
                 if (!all_finite(px[r], py[r], pz[r], pr[r], pv[r], pt[r]) || pv[r] < 0.0f) {
                     ++non_finite;
                 } else if (placed.variance_m2[r] > spread_above) {
-                    spread_point(grid, grid.nx(), grid.ny(), placed.lx[r], placed.ly[r], placed.lz[r],
-                                 placed.variance_m2[r], placed.weight[r], batch_ms);
+                    spread_point(grid, placed.lx[r], placed.ly[r], placed.lz[r], placed.variance_m2[r],
+                                 placed.weight[r], batch_ms);
                 } else {
                     ++outside;
                 }
@@ -530,12 +599,13 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch)
 
 std::size_t TerrainMapper::fuse(const PointBatch& batch)
 {
-    if (ego_) return fuse_into(*ego_, batch);
-    return fuse_into(*world_, batch);
+    if (ego_) return fuse_into(*ego_, batch, true);
+    return fuse_into(*world_, batch, true);
 }
 
 void TerrainMapper::snapshot(MapSnapshot& out) const
 {
+    flush_spread();
     const int nx = config_.nx(), ny = config_.ny();
     const double g = config_.grid_size_m;
     const std::size_t cells = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
@@ -606,6 +676,7 @@ void TerrainMapper::snapshot(MapSnapshot& out) const
 CellStatistics TerrainMapper::statistics_at_body(double x_m, double y_m) const
 {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    flush_spread();
     if (history_.empty()) return {nan, nan};
     const Pose& pose = history_.newest();
     const Eigen::Vector2d world = pose.position_m.head<2>() + rotation_2d(pose.yaw_rad()) * Eigen::Vector2d(x_m, y_m);
@@ -623,6 +694,7 @@ CellStatistics TerrainMapper::statistics_at_body(double x_m, double y_m) const
 
 MapTotals TerrainMapper::total() const
 {
+    flush_spread();
     MapTotals sum;
     auto add = [&sum](const CellSums& c, uint32_t n) {
         if (c.empty()) return;

@@ -59,18 +59,31 @@ Pose pose_at(int64_t t_us, double x, double yaw, double orientation_sigma_deg)
     return p;
 }
 
-void run_fusion(benchmark::State& state, MapConfig config, double orientation_sigma_deg)
+// Fuses the 16 scans in turn. scan_span_s: the time one scan spans (13.3 ms as the LMS's
+// 180 deg; above max_interpolation_span_s it is fused in runs). flush_every: the pending
+// spread shares go into the cells every this many scans, as the map's moves do while driving
+// (a wrap every 2.7 scans at 3 m/s); 0: never (plain fusion has none).
+void run_fusion(benchmark::State& state, MapConfig config, double orientation_sigma_deg, double scan_span_s = 13.3e-3,
+                int flush_every = 0)
 {
     TerrainMapper mapper(config);
     mapper.add_pose(pose_at(0, 0.0, 0.0, orientation_sigma_deg));
-    mapper.add_pose(pose_at(100'000, 0.1, 0.01, orientation_sigma_deg));
+    mapper.add_pose(pose_at(300'000, 0.1, 0.01, orientation_sigma_deg));
     // 16 scans at tilts from 3 to 18 deg cover the ground 2.8 to 16 m ahead.
     std::vector<Scan> scans;
-    for (int k = 0; k < 16; ++k) scans.emplace_back((3.0 + k) * M_PI / 180.0);
+    for (int k = 0; k < 16; ++k) {
+        scans.emplace_back((3.0 + k) * M_PI / 180.0);
+        for (float& t : scans.back().t) t *= static_cast<float>(scan_span_s / 13.3e-3);
+    }
     std::size_t k = 0;
+    int since_flush = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(mapper.fuse(scans[k].batch(50'000)));
         k = (k + 1) & 15;
+        if (flush_every > 0 && ++since_flush == flush_every) {
+            mapper.flush_spread();
+            since_flush = 0;
+        }
     }
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * 361);
     state.counters["spread_fraction"] =
@@ -108,12 +121,70 @@ void BM_Fusion_WorldAligned(benchmark::State& state)
 }
 BENCHMARK(BM_Fusion_WorldAligned);
 
-// 2 deg (the 3DM-GX1's dynamic accuracy): most points beyond 4 m spread over up to 5x5 cells.
-void BM_Fusion_Spreading2deg(benchmark::State& state)
+// The configuration the daemon runs: its defaults (section 3.5 spreading, summed-area form)
+// with the 3DM-GX1's 2 deg: 62 % of the points spread over up to 5x5 cells; the pending
+// shares flushed every 3 scans (the wraps of a 3 m/s drive), or every 16 (standing, or slow).
+void BM_Fusion_Default_GX1_2deg(benchmark::State& state) { run_fusion(state, MapConfig{}, 2.0, 13.3e-3, 3); }
+BENCHMARK(BM_Fusion_Default_GX1_2deg);
+void BM_Fusion_Default_GX1_2deg_Flush16(benchmark::State& state) { run_fusion(state, MapConfig{}, 2.0, 13.3e-3, 16); }
+BENCHMARK(BM_Fusion_Default_GX1_2deg_Flush16);
+
+// The same with the cell-by-cell reference spreading (spread_exact).
+void BM_Fusion_Default_GX1_2deg_Exact(benchmark::State& state)
 {
-    run_fusion(state, MapConfig{}, 2.0);
+    MapConfig c;
+    c.spread_exact = true;
+    run_fusion(state, c, 2.0);
 }
-BENCHMARK(BM_Fusion_Spreading2deg);
+BENCHMARK(BM_Fusion_Default_GX1_2deg_Exact);
+
+// 6 deg: every point spreads (the other end of the mix of the 2 deg case).
+void BM_Fusion_Default_AllSpread6deg(benchmark::State& state) { run_fusion(state, MapConfig{}, 6.0, 13.3e-3, 3); }
+BENCHMARK(BM_Fusion_Default_AllSpread6deg);
+
+// Plain fusion with scans spanning 0.09 s (one run) and 0.12 s (beyond
+// max_interpolation_span_s: two runs).
+void BM_Fusion_Span90ms(benchmark::State& state) { run_fusion(state, MapConfig{}, 0.2, 0.09); }
+BENCHMARK(BM_Fusion_Span90ms);
+void BM_Fusion_Span120ms(benchmark::State& state) { run_fusion(state, MapConfig{}, 0.2, 0.12); }
+BENCHMARK(BM_Fusion_Span120ms);
+
+// A lidar-like cloud through the same fusion, default configuration, GX1's 2 deg: 64 beams x
+// 1024 azimuths (65 536 points) whose ranges on flat ground run from 10 to 100 m, over 33 ms
+// (2 M points/s); the points beyond the map's 30 m are counted outside.
+void BM_Fusion_Default_Lidar64x1024(benchmark::State& state)
+{
+    std::vector<float> x, y, z, range, variance, t;
+    const int beams = 64, azimuths = 1024;
+    for (int a = 0; a < azimuths; ++a) {
+        const double bearing = 2.0 * M_PI * a / azimuths;
+        for (int b = 0; b < beams; ++b) {
+            const double r = 10.0 * std::pow(10.0, static_cast<double>(b) / (beams - 1));  // 10 .. 100 m
+            const double ground = std::sqrt(std::max(r * r - 1.8 * 1.8, 0.0));
+            x.push_back(static_cast<float>(ground * std::cos(bearing)));
+            y.push_back(static_cast<float>(ground * std::sin(bearing)));
+            z.push_back(0.0f);
+            range.push_back(static_cast<float>(r));
+            variance.push_back(4e-4f);
+            t.push_back(static_cast<float>(0.033 * a / azimuths));
+        }
+    }
+    TerrainMapper mapper{MapConfig{}};
+    mapper.add_pose(pose_at(0, 0.0, 0.0, 2.0));
+    mapper.add_pose(pose_at(300'000, 0.1, 0.01, 2.0));
+    const PointBatch cloud{50'000, x.size(), x.data(), y.data(), z.data(), range.data(), variance.data(), t.data()};
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(mapper.fuse(cloud));
+        mapper.flush_spread();
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(x.size()));
+    state.counters["in_map_fraction"] =
+        static_cast<double>(mapper.counters().points_fused) /
+        static_cast<double>(mapper.counters().points_fused + mapper.counters().rejected_outside_map);
+    state.counters["spread_fraction"] =
+        static_cast<double>(mapper.counters().points_spread) / static_cast<double>(mapper.counters().points_fused);
+}
+BENCHMARK(BM_Fusion_Default_Lidar64x1024)->Unit(benchmark::kMicrosecond);
 
 // Every cell known (known_radius_m = 0), or only those within known_radius_m ahead of the
 // rear edge's centre: a half disc of 14.5 m holds 37 % of the 30 m x 30 m map, the share of
@@ -169,17 +240,67 @@ BENCHMARK(BM_Rotation150_Generic)->Unit(benchmark::kMicrosecond);
 void BM_Rotation150_DemoCoverage_Generic(benchmark::State& state) { rotate_generic(state, full_grid(14.5)); }
 BENCHMARK(BM_Rotation150_DemoCoverage_Generic)->Unit(benchmark::kMicrosecond);
 
-// One forward wrap of one row (eq. 5-8): clear 150 cells and move the index.
-void BM_Wrap150(benchmark::State& state)
+// One rotation by theta_d of a live full map turned in place, +5 and -5 deg in turn (no fresh
+// copy: the pool's order is what earlier rotations and merges left). The map is refilled
+// every 64 rotations (outside the timing), as cells turn out at its corners.
+void BM_Rotation150_InPlace(benchmark::State& state)
 {
-    EgocentricGrid g = full_grid();
+    const EgocentricGrid full = full_grid();
+    EgocentricGrid g = full;
+    int k = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(g.transform((k & 1 ? -5.0 : 5.0) * M_PI / 180.0, 0.1, 0.0));
+        if (++k == 64) {
+            state.PauseTiming();
+            g = full;
+            k = 0;
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_Rotation150_InPlace)->Unit(benchmark::kMicrosecond);
+
+// Wraps of full rows (eq. 5-8): each call clears one row of 150 known cells and moves the
+// index; the map is refilled every 150 rows (outside the timing). Items: rows.
+void BM_Wrap150_FullRows(benchmark::State& state)
+{
+    const EgocentricGrid full = full_grid();
+    EgocentricGrid g = full;
+    int k = 0;
     for (auto _ : state) {
         g.wrap_forward(1);
         benchmark::ClobberMemory();
+        if (++k == 150) {
+            state.PauseTiming();
+            g = full;
+            k = 0;
+            state.ResumeTiming();
+        }
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+}
+BENCHMARK(BM_Wrap150_FullRows);
+
+// A sideways move of one column (the re-centring of a sideways drift), left and right in
+// turn, on a full map refilled every 64 moves (outside the timing).
+void BM_ColumnMove150(benchmark::State& state)
+{
+    const EgocentricGrid full = full_grid();
+    EgocentricGrid g = full;
+    int k = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(g.transform(0.0, 0.0, k & 1 ? -0.2 : 0.2));
+        if (++k == 64) {
+            state.PauseTiming();
+            g = full;
+            k = 0;
+            state.ResumeTiming();
+        }
     }
 }
-BENCHMARK(BM_Wrap150);
+BENCHMARK(BM_ColumnMove150)->Unit(benchmark::kMicrosecond);
 
+// One forward wrap of one row (eq. 5-8) of a map whose rows are empty after the first pass.
 // A pose update that wraps one row: the whole checkScrollMap path of the mapper.
 void BM_PoseUpdateWrap150(benchmark::State& state)
 {

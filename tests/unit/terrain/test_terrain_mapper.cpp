@@ -402,12 +402,14 @@ namespace {
 // ahead, some far outside, some with a NaN, a negative variance or a large variance (to
 // be spread), fused into a map of the given mode.
 // max_span_s: above 0.02, the scan takes the vector placement (the end transforms blended);
-// below, the scalar path (each point's pose interpolated on its own).
-MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters, double max_span_s = 0.1)
+// below, runs of it do, or with split false the scalar path (each point's pose interpolated
+// on its own).
+MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters, double max_span_s = 0.1, bool split = true)
 {
     MapConfig c;
     c.mode = mode;
     c.max_interpolation_span_s = max_span_s;
+    c.split_long_batches = split;
     TerrainMapper m(c);
     REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0, 1e-4)) == PoseHistory::AddResult::added);
     REQUIRE(m.add_pose(pose_at(20'000, 0.02, 0.001, 0.004, 2e-4)) == PoseHistory::AddResult::added);
@@ -479,28 +481,34 @@ TEST_CASE("each placement kernel fuses a scan as the scalar path does")
         const ScopedSimdLevel use(level);
         for (const MapMode mode : {MapMode::egocentric, MapMode::world_aligned}) {
             INFO("simd level " << to_string(level) << ", mode " << static_cast<int>(mode));
-            MapCounters kernel_counters, scalar_counters;
+            MapCounters kernel_counters, run_counters, scalar_counters;
             const MapSnapshot kernel = fuse_mixed_scan(mode, kernel_counters);
-            const MapSnapshot scalar = fuse_mixed_scan(mode, scalar_counters, 0.001);
-            CHECK(kernel_counters.points_fused == scalar_counters.points_fused);
-            CHECK(kernel_counters.points_spread == scalar_counters.points_spread);
-            CHECK(kernel_counters.rejected_non_finite == scalar_counters.rejected_non_finite);
-            CHECK(kernel_counters.rejected_outside_map == scalar_counters.rejected_outside_map);
-            int same = 0, differ = 0;
-            for (std::size_t k = 0; k < scalar.count.size(); ++k) {
-                if (kernel.count[k] != scalar.count[k]) {
-                    ++differ;
-                    continue;
+            // 20 ms in runs of at most 5 ms, each blended between its own end poses.
+            const MapSnapshot runs = fuse_mixed_scan(mode, run_counters, 0.005);
+            const MapSnapshot scalar = fuse_mixed_scan(mode, scalar_counters, 0.001, false);
+            auto agree = [&](const MapSnapshot& fused, const MapCounters& counters) {
+                CHECK(counters.points_fused == scalar_counters.points_fused);
+                CHECK(counters.points_spread == scalar_counters.points_spread);
+                CHECK(counters.rejected_non_finite == scalar_counters.rejected_non_finite);
+                CHECK(counters.rejected_outside_map == scalar_counters.rejected_outside_map);
+                int same = 0, differ = 0;
+                for (std::size_t k = 0; k < scalar.count.size(); ++k) {
+                    if (fused.count[k] != scalar.count[k]) {
+                        ++differ;
+                        continue;
+                    }
+                    if (scalar.count[k] == 0) continue;
+                    INFO("cell " << k);
+                    ++same;
+                    CHECK(fused.mean_z_m[k] == Approx(scalar.mean_z_m[k]).margin(1e-4));
+                    CHECK(fused.max_z_m[k] == Approx(scalar.max_z_m[k]).margin(1e-4));
+                    CHECK(fused.min_z_m[k] == Approx(scalar.min_z_m[k]).margin(1e-4));
                 }
-                if (scalar.count[k] == 0) continue;
-                INFO("cell " << k);
-                ++same;
-                CHECK(kernel.mean_z_m[k] == Approx(scalar.mean_z_m[k]).margin(1e-4));
-                CHECK(kernel.max_z_m[k] == Approx(scalar.max_z_m[k]).margin(1e-4));
-                CHECK(kernel.min_z_m[k] == Approx(scalar.min_z_m[k]).margin(1e-4));
-            }
-            CHECK(same > 100);
-            CHECK(differ <= 4);
+                CHECK(same > 100);
+                CHECK(differ <= 4);
+            };
+            agree(kernel, kernel_counters);
+            agree(runs, run_counters);
         }
     }
 }

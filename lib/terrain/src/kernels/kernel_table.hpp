@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fusion_kernels.hpp"
+#include "spread_corners.hpp"
 #include "turn_slots.hpp"
 #include "ugv/terrain/simd.hpp"
 
@@ -18,6 +19,7 @@ struct KernelTable
     PlaceChunk place_chunk_world;       // rows and columns rings
     TurnSlots turn_slots;
     FindMerges find_merges;
+    SpreadCorners spread_corners;  // a spread point's summed-area corners
 };
 
 // The table in use.

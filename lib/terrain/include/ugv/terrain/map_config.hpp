@@ -29,9 +29,15 @@ struct MapConfig
     double reference_y_m = 0.0;
     bool spread = true;          // section 3.5: spread a point whose sigma exceeds G_l
     int spread_max_cells = 2;    // footprint half-width cap, cells (1..4)
+    // Spread cell by cell (the reference) instead of in summed-area form (the same sums up
+    // to rounding, at a cost that does not grow with the footprint: src/spread_sums.hpp).
+    bool spread_exact = false;
     double min_variance_m2 = 1e-6;  // floor of a point's variance (a zero variance would be an infinite weight)
     int64_t pose_history_us = 2'000'000;
-    double max_interpolation_span_s = 0.1;  // longer point batches are transformed point by point
+    double max_interpolation_span_s = 0.1;  // longer point batches are fused in runs that span at most this
+    // false: a longer batch goes point by point, each point's pose interpolated on its own
+    // (the scalar reference the runs are tested against).
+    bool split_long_batches = true;
 
     int nx() const { return static_cast<int>(std::lround(extent_x_m / grid_size_m)); }
     int ny() const { return static_cast<int>(std::lround(extent_y_m / grid_size_m)); }

@@ -22,6 +22,7 @@ namespace ugv::terrain {
 
 namespace detail {
 struct PlacedPoints;  // the fusion loop's scratch (src/kernels/fusion_kernels.hpp)
+class SpreadSums;    // section 3.5 spreading in summed-area form (src/spread_sums.hpp)
 }
 
 // One batch of points in the body frame (a view; the arrays hold count values each).
@@ -140,6 +141,11 @@ public:
 
     void clear();
 
+    // The pending spread shares (section 3.5, summed-area form) into the cells. The map does
+    // this itself before it moves or is read; public for benchmarks that pace it. Const:
+    // what the map says does not change, only where its sums are kept.
+    void flush_spread() const;
+
     // The map's content and where it lies (egocentric mode, once a pose has placed it and
     // any restore was decided); false otherwise, and out is left as it was.
     bool save_state(MapState& out) const;
@@ -157,13 +163,18 @@ private:
     Frame local_frame() const;
     void move_egocentric(const Pose& pose);
     void move_world(const Pose& pose);
+    // split: a batch spanning more than max_interpolation_span_s is fused in runs that do not.
     template <typename Grid>
-    std::size_t fuse_into(Grid& grid, const PointBatch& batch);
+    std::size_t fuse_into(Grid& grid, const PointBatch& batch, bool split);
     template <typename Grid>
     void fuse_point(Grid& grid, float x, float y, double z, float variance_m2, TimeTick t_ms);
+    // Section 3.5: spread_point adds the point to the pending summed-area corners (or, with
+    // config.spread_exact, runs spread_exact); spread_exact splats it cell by cell, the
+    // readable reference the summed-area form is tested against.
     template <typename Grid>
-    void spread_point(Grid& grid, int rows, int cols, float x, float y, double z, float variance_m2, float w,
-                      TimeTick t_ms);
+    void spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
+    template <typename Grid>
+    void spread_exact(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     Eigen::Vector2d reference_world(const Pose& pose) const;
     // A time on the tallies' clock (whole ms since epoch_us_).
     TimeTick tick_of(int64_t utime_us) const;
@@ -180,6 +191,7 @@ private:
     Eigen::Vector2d anchor_m_{0, 0};  // egocentric: ENU of the local frame's origin
     double anchor_yaw_rad_ = 0.0;     // egocentric: ENU yaw of the local X axis
     std::unique_ptr<detail::PlacedPoints> placed_;  // allocated once: fuse() allocates nothing
+    std::unique_ptr<detail::SpreadSums> spread_sums_;  // with spread and not spread_exact
     std::unique_ptr<MapState> pending_restore_;
     RestoreOutcome restore_outcome_ = RestoreOutcome::none;
     double restore_distance_m_ = std::numeric_limits<double>::quiet_NaN();

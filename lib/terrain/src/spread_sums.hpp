@@ -1,0 +1,259 @@
+// Section 3.5 spreading at a cost that does not grow with the footprint (summed-area form).
+// Private to the library.
+//
+// A spread point gives cell (a, b) the share w fx[a] fy[b] of its weight, fx and fy being
+// the footprint's overlap with each row and column over its width (spread.hpp). Along one
+// axis the overlap of [lo, hi] with cell k is S(k; lo) - S(k; hi), S(k; p) = clamp(k + 1 -
+// p, 0, 1), whose first difference in k is non-zero in two cells only (floor(p): 1 - frac
+// p; floor(p) + 1: frac p). So the whole footprint is the 2-D running sum of 4 x 4 corner
+// entries, however wide it is; the centroid terms of the exact path (share times the
+// offset of its part's centroid, and times its square) are non-zero only in the footprint's
+// edge cells and take the same corners. A spread point adds one record at each of its 16
+// corners here; flush() forms the running sums over the corners' box once and adds each
+// touched cell's total to the map, as one sample set (add_sums). The result equals the
+// exact path (TerrainMapper, spread_exact) up to rounding: the corners and running sums are
+// in double, the fractions in float as the exact path takes them.
+//
+// What is not a sum: a share's time. Every cell a pending share touches takes the newest
+// time of the pending shares at the flush (the map flushes before it moves and before it is
+// read, so the error is below one pose period while driving, one publish period standing).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "cell_fusion.hpp"
+#include "kernels/kernel_table.hpp"
+#include "ugv/terrain/cell_array.hpp"
+#include "ugv/terrain/map_config.hpp"
+
+namespace ugv::terrain::detail {
+
+class SpreadSums
+{
+public:
+    // The components of a corner record (and of a cell's total after the running sums).
+    static constexpr int kW = 0, kWz = 1, kWz2 = 2, kN = 3, kX1 = 4, kX2 = 5, kY1 = 6, kY2 = 7;
+    using Record = double __attribute__((vector_size(64)));
+    static_assert(kCornerComponents == 8 && sizeof(Record) == 8 * sizeof(double));
+
+    SpreadSums(int rows, int columns)
+        : rows_(rows),
+          columns_(columns),
+          stride_(static_cast<std::size_t>(columns) + 2),
+          corner_storage_(((static_cast<std::size_t>(rows) + 3) * stride_ + 1) * kCornerComponents),
+          extremes_(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns))
+    {
+        // Records aligned to their size (a vector of them would not be: operator new gives 16).
+        void* p = corner_storage_.data();
+        std::size_t space = corner_storage_.size() * sizeof(double);
+        corners_ = static_cast<Record*>(std::align(sizeof(Record), sizeof(Record), p, space));
+        running_ = corners_ + (static_cast<std::size_t>(rows) + 2) * stride_;
+    }
+    SpreadSums(const SpreadSums&) = delete;
+    SpreadSums& operator=(const SpreadSums&) = delete;
+
+    bool pending() const { return pending_; }
+
+    // One spread point: centre (cx, cy) in cells from the grid's corner (unwrapped), half
+    // width h cells, weight w, height z (ENU), time t_ms. Returns false when its footprint
+    // misses the grid (nothing added).
+    bool add(float cx, float cy, float h, float w, float g, float z, TimeTick t_ms)
+    {
+        Axis ax, ay;
+        if (!axis(cx, h, rows_, g, ax) || !axis(cy, h, columns_, g, ay)) return false;
+        if (!pending_) {
+            pending_ = true;
+            z0_ = z;
+            newest_ms_ = t_ms;
+            row_lo_ = ax.at[0];
+            row_hi_ = ax.at[3];
+            col_lo_ = ay.at[0];
+            col_hi_ = ay.at[3];
+        } else {
+            newest_ms_ = std::max(newest_ms_, t_ms);
+            row_lo_ = std::min(row_lo_, ax.at[0]);
+            row_hi_ = std::max(row_hi_, ax.at[3]);
+            col_lo_ = std::min(col_lo_, ay.at[0]);
+            col_hi_ = std::max(col_hi_, ay.at[3]);
+        }
+        const double dz = static_cast<double>(z) - z0_;
+        const double wd = static_cast<double>(w);
+        const double wz = wd * dz, wz2 = wz * dz;
+        // The corner record is rows[a] * columns[b], component by component; built in memory
+        // so that the 16 updates are plain vector loads, multiplies and adds.
+        alignas(64) double rows[4][kCornerComponents], columns[4][kCornerComponents];
+        for (int a = 0; a < 4; ++a) {
+            const double f = ax.fraction[a], e = ay.fraction[a];
+            double* r = rows[a];
+            r[kW] = wd * f;
+            r[kWz] = wz * f;
+            r[kWz2] = wz2 * f;
+            r[kN] = ax.count[a];
+            r[kX1] = wd * ax.moment[a];
+            r[kX2] = wd * ax.moment2[a];
+            r[kY1] = wd * f;
+            r[kY2] = wd * f;
+            double* c = columns[a];
+            c[kW] = c[kWz] = c[kWz2] = c[kX1] = c[kX2] = e;
+            c[kN] = ay.count[a];
+            c[kY1] = ay.moment[a];
+            c[kY2] = ay.moment2[a];
+        }
+        kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, rows, columns);
+        // Its height goes into the extremes of the cell it was measured in only (section 3.5).
+        const int own_row = static_cast<int>(std::floor(cx)), own_column = static_cast<int>(std::floor(cy));
+        if (own_row >= 0 && own_row < rows_ && own_column >= 0 && own_column < columns_)
+            extremes_[static_cast<std::size_t>(own_row) * static_cast<std::size_t>(columns_) +
+                      static_cast<std::size_t>(own_column)]
+                .add(z);
+        return true;
+    }
+
+    // The running sums over the pending corners' box, each touched cell's total added to the
+    // grid (unwrapped row i, column j is grid.physical(i, j)); afterwards nothing is pending.
+    template <class Grid>
+    void flush(Grid& grid)
+    {
+        if (!pending_) return;
+        pending_ = false;
+        const CellArrays cells(grid.cells());
+        std::fill(running_ + col_lo_, running_ + col_hi_ + 1, Record{});
+        for (int i = row_lo_; i <= row_hi_; ++i) {
+            Record* line = corners_ + static_cast<std::size_t>(i) * stride_;
+            Record along{};
+            for (int j = col_lo_; j <= col_hi_; ++j) {
+                along += line[j];
+                line[j] = Record{};
+                Record& total = running_[static_cast<std::size_t>(j)];
+                total += along;
+                // A cell outside every footprint holds rounding only; a touched one N >= 1.
+                if (i < rows_ && j < columns_ && total[kN] > 0.5) add_to(grid, cells, i, j, total);
+            }
+        }
+    }
+
+    // The pending corners dropped (the map was cleared).
+    void discard()
+    {
+        if (!pending_) return;
+        for (int i = row_lo_; i <= row_hi_; ++i)
+            std::fill_n(corners_ + static_cast<std::size_t>(i) * stride_ + col_lo_, col_hi_ - col_lo_ + 1,
+                        Record{});
+        std::fill(extremes_.begin(), extremes_.end(), CellExtremes{});
+        pending_ = false;
+    }
+
+private:
+    // One axis of a footprint: the four corner positions (cells, >= 0, <= limit + 1) and each
+    // one's entries: the overlap fraction's difference, the touched count's, the centroid
+    // moment's (share times centroid offset, m) and its square's (m^2).
+    struct Axis
+    {
+        int at[4];
+        double fraction[4], count[4], moment[4], moment2[4];
+    };
+
+    // The footprint [c - h, c + h] clamped to [0, limit) and renormalised, as axis_footprint.
+    static bool axis(float c, float h, int limit, float g, Axis& out)
+    {
+        h = std::clamp(h, 1e-6f, static_cast<float>(kMaxSpreadCells));
+        const float lo = std::max(c - h, 0.0f);
+        const float hi = std::min(c + h, static_cast<float>(limit));
+        if (!(hi > lo)) return false;
+        const double inv = 1.0 / static_cast<double>(hi - lo);
+        const int lo0 = static_cast<int>(lo), hi0 = static_cast<int>(hi);  // floor: both >= 0
+        const double ql = static_cast<double>(lo - static_cast<float>(lo0));
+        const double qh = static_cast<double>(hi - static_cast<float>(hi0));
+        out.at[0] = lo0;
+        out.at[1] = lo0 + 1;
+        out.at[2] = hi0;
+        out.at[3] = hi0 + 1;
+        out.fraction[0] = (1.0 - ql) * inv;
+        out.fraction[1] = ql * inv;
+        out.fraction[2] = -(1.0 - qh) * inv;
+        out.fraction[3] = -qh * inv;
+        // Touched: cells lo0 .. ceil(hi) - 1.
+        out.count[0] = 1.0;
+        out.count[1] = 0.0;
+        out.count[2] = qh > 0.0 ? 0.0 : -1.0;
+        out.count[3] = qh > 0.0 ? -1.0 : 0.0;
+        // The integral of (x - cell centre) over the part of the edge cell from p on is
+        // q (1 - q) / 2 (q = frac p); interior cells are whole, their integral 0.
+        const double gd = static_cast<double>(g);
+        const double ml = 0.5 * ql * (1.0 - ql) * inv * gd, mh = 0.5 * qh * (1.0 - qh) * inv * gd;
+        out.moment[0] = ml;
+        out.moment[1] = -ml;
+        out.moment[2] = -mh;
+        out.moment[3] = mh;
+        // Fraction times the squared centroid offset, in the edge cells.
+        double tl = 0.0, th = 0.0;
+        if (lo0 == hi0) {
+            const double centre = 0.5 * (ql + qh) - 0.5;
+            tl = (qh - ql) * centre * centre;
+        } else {
+            tl = (1.0 - ql) * 0.25 * ql * ql;
+            th = qh * 0.25 * (1.0 - qh) * (1.0 - qh);
+        }
+        tl *= inv * gd * gd;
+        th *= inv * gd * gd;
+        out.moment2[0] = tl;
+        out.moment2[1] = -tl;
+        out.moment2[2] = th;
+        out.moment2[3] = -th;
+        return true;
+    }
+
+    template <class Grid>
+    void add_to(Grid& grid, const CellArrays& cells, int i, int j, const Record& total)
+    {
+        const uint32_t at = grid.storage_of(grid.physical(i, j));
+        // The cell's share of the pending points as a set of samples about their mean height.
+        const double w = total[kW];
+        const double mean = z0_ + total[kWz] / w;
+        CellSums b;
+        b.w = static_cast<float>(w);
+        b.z_ref_m = static_cast<float>(mean);
+        const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
+        b.z_wz = static_cast<float>(total[kWz] + w * d);
+        b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
+        b.x_wx = static_cast<float>(total[kX1]);
+        b.x_wx2 = static_cast<float>(total[kX2]);
+        b.y_wy = static_cast<float>(total[kY1]);
+        b.y_wy2 = static_cast<float>(total[kY2]);
+        CellSums& a = cells.sums[at];
+        // The heavier side keeps its reference height (as a sample outweighing a cell moves it).
+        if (a.empty() || b.w > a.w) {
+            add_sums(b, a);
+            a = b;
+        } else {
+            add_sums(a, b);
+        }
+        CellTally& tally = cells.tallies[at];
+        tally.count += static_cast<uint32_t>(std::llround(total[kN]));
+        tally.newest_ms = std::max(tally.newest_ms, newest_ms_);
+        CellExtremes& own = extremes_[static_cast<std::size_t>(i) * static_cast<std::size_t>(columns_) +
+                                      static_cast<std::size_t>(j)];
+        tally.extremes.merge(own);
+        own = CellExtremes{};
+    }
+
+    int rows_, columns_;
+    std::size_t stride_;
+    std::vector<double> corner_storage_;
+    Record* corners_;                     // (rows + 2) x (columns + 2), unwrapped; zero where nothing is pending
+    Record* running_;                     // the running sums of the row above, per column
+    std::vector<CellExtremes> extremes_;  // rows x columns: the pending points' own heights
+    bool pending_ = false;
+    double z0_ = 0.0;  // the pending heights are taken from the first one's
+    TimeTick newest_ms_ = kNoTime;
+    int row_lo_ = 0, row_hi_ = 0, col_lo_ = 0, col_hi_ = 0;  // the pending corners' box
+};
+
+}  // namespace ugv::terrain::detail
