@@ -74,6 +74,7 @@ PoseConfig read_config(runtime::Config& cfg)
     e.buffer_us = seconds_to_us(cfg.get_double("buffer_s", 0.4, 0.0, 2.0));
 
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    c.stamp_skew = runtime::read_stamp_skew_limits(cfg, c.max_stamp_ahead_us);
     // Older than this is older than anything the filter can still use: an input is applied
     // within buffer_s of the newest, and delivery (batching, a busy CPU) adds a little.
     c.max_stamp_age_us = seconds_to_us(cfg.get_double("max_stamp_age_s", 2.0, 0.01, 3600.0));
