@@ -36,6 +36,7 @@ void sleep_unless_stopped(const daemon::Daemon& d, int64_t us)
 const char* kNodeCounterNames[] = {
     "ignored_protocol", "superseded", "fixes_published", "velocities_published", "reconnects", "silences",
     "configure_failures", "open_failures", "clock_offset_us", "clock_offset_last_us", "clock_jumps", "time_status",
+    "host_clock_offset_us", "host_clock_offset_valid",
 };
 
 }  // namespace
@@ -107,6 +108,10 @@ void GpsNode::update_counters(const novatel::Session* session)
         c["clock_jumps"] = static_cast<int64_t>(clock.jumps());
     }
     c["time_status"] = static_cast<int64_t>(interpreter_.last_time_status());
+    // This host's clock against GPS time (docs/time.md): valid once the receiver's time is FINE.
+    const auto& host = interpreter_.host_clock();
+    c["host_clock_offset_valid"] = host.valid() ? 1 : 0;
+    if (host.valid()) c["host_clock_offset_us"] = host.smoothed_us();
 }
 
 void GpsNode::run()

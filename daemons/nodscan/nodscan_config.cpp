@@ -25,6 +25,7 @@ NodscanConfig read_config(runtime::Config& cfg)
     c.assembler.max_extrapolation_us = cfg.get_int("max_extrapolation_ms", 20, 0, 500) * 1000;
     c.servo_history_us = cfg.get_int("servo_history_ms", 2000, 100, 60000) * 1000;
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    c.stamp_skew = runtime::read_stamp_skew_limits(cfg, c.max_stamp_ahead_us);
     runtime::Config m = cfg.section("mount");
     c.assembler.mount = nodscan::read_mount(m);
     if (c.servo_history_us < 2 * c.max_wait_us)

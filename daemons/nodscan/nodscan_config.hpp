@@ -6,6 +6,7 @@
 
 #include "ugv/nodscan/scan_assembler.hpp"
 #include "ugv/runtime/config.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::nodscan_daemon {
 
@@ -22,6 +23,7 @@ struct NodscanConfig
     // Inputs stamped further ahead of the bus clock are refused; older than servo_history_us
     // behind it, too (runtime/stamp_gate.hpp).
     int64_t max_stamp_ahead_us = 2'000'000;
+    runtime::StampSkewLimits stamp_skew;  // max_stamp_skew_s, max_stamp_lag_s: the clock-disagreement flag
 };
 
 NodscanConfig read_config(runtime::Config& cfg);

@@ -116,7 +116,7 @@ int run(daemon::Daemon& d, const NodscanConfig& config)
     // While every message of one input is refused: DEGRADED, saying which (no POINTS can
     // follow); RUNNING again once one is taken and POINTS flow. A servo sample older than the
     // history is of no use, nor a scan whose angles are gone.
-    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.servo_history_us},
+    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.servo_history_us, .skew = config.stamp_skew},
                                [&] {
                                    if (any_published) d.ready();
                                });

@@ -79,6 +79,7 @@ PoseConfig read_config(runtime::Config& cfg)
     e.max_ahead_us = seconds_to_us(cfg.get_double("max_ahead_of_newest_s", 0.5, 0.001, 3600.0));
 
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    c.stamp_skew = runtime::read_stamp_skew_limits(cfg, c.max_stamp_ahead_us);
     // Older than this is older than anything the filter can still use (the history spans
     // ~1-2 s of inputs), with room for delivery (batching, a busy CPU).
     c.max_stamp_age_us = seconds_to_us(cfg.get_double("max_stamp_age_s", 2.0, 0.01, 3600.0));

@@ -5,6 +5,7 @@
 
 #include "ugv/estimation/pose_estimator.hpp"
 #include "ugv/runtime/config.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 
 namespace ugv::pose_daemon {
 
@@ -17,6 +18,7 @@ struct PoseConfig
     std::string channel = "POSE";
     // Inputs stamped beyond these from the bus clock are refused (runtime/stamp_gate.hpp).
     int64_t max_stamp_ahead_us = 2'000'000;
+    runtime::StampSkewLimits stamp_skew;  // max_stamp_skew_s, max_stamp_lag_s: the clock-disagreement flag
     int64_t max_stamp_age_us = 2'000'000;
 };
 

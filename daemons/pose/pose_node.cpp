@@ -38,7 +38,7 @@ int run(daemon::Daemon& d, const PoseConfig& cfg)
     // An input stamped too far from the bus clock never reaches the estimator. While every
     // message of one input is refused the daemon is DEGRADED, saying which; when one is taken
     // again, the pose's own state is back.
-    daemon::InputStamps stamps(d, {.max_ahead_us = cfg.max_stamp_ahead_us, .max_age_us = cfg.max_stamp_age_us}, [&] {
+    daemon::InputStamps stamps(d, {.max_ahead_us = cfg.max_stamp_ahead_us, .max_age_us = cfg.max_stamp_age_us, .skew = cfg.stamp_skew}, [&] {
         if (first_pose) return;
         d.set_state(pose_why.empty() ? daemon::State::running : daemon::State::degraded, pose_why);
         d.notify_status(pose_why.empty() ? std::string("OK") : "DEGRADED: " + pose_why);

@@ -31,6 +31,7 @@ TerrainConfig read_config(runtime::Config& cfg)
     c.map_save_period_us =
         static_cast<int64_t>(std::llround(cfg.get_double("map_save_period_s", 10.0, 1.0, 3600.0) * 1e6));
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    c.stamp_skew = runtime::read_stamp_skew_limits(cfg, c.max_stamp_ahead_us);
 
     terrain::MapConfig& m = c.map;
     m.grid_size_m = cfg.get_double("grid_size_m", 0.2, 0.05, 2.0);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ugv/runtime/config.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/terrain/map_config.hpp"
 
 namespace ugv::terrain_daemon {
@@ -23,6 +24,7 @@ struct TerrainConfig
     // Inputs stamped further ahead of the bus clock are refused; older than the pose history
     // behind it, too (runtime/stamp_gate.hpp).
     int64_t max_stamp_ahead_us = 2'000'000;
+    runtime::StampSkewLimits stamp_skew;  // max_stamp_skew_s, max_stamp_lag_s: the clock-disagreement flag
     terrain::MapConfig map;
 };
 

@@ -244,7 +244,7 @@ int run(daemon::Daemon& d, const TerrainConfig& config)
     // still go out (they no longer take in what the vehicle sees, or no longer move with it);
     // RUNNING again once one is taken. A pose older than the pose history is of no use, nor a
     // cloud whose poses are gone.
-    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us},
+    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.map.pose_history_us, .skew = config.stamp_skew},
                                [&] {
                                    if (any_published) d.ready();
                                });

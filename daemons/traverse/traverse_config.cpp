@@ -26,6 +26,7 @@ TraverseConfig read_config(runtime::Config& cfg)
     c.arcs_channel = cfg.get_channel("arcs_channel", c.arcs_channel);
     c.health_timeout_us = seconds_to_us(cfg.get_double("health_timeout_s", 2.0, 0.1, 60.0));
     c.max_stamp_ahead_us = runtime::read_max_stamp_ahead_us(cfg);
+    c.stamp_skew = runtime::read_stamp_skew_limits(cfg, c.max_stamp_ahead_us);
 
     // The same vehicle as ugv-terrain's rear_bumper_x_m and front_bumper_x_m (body frame, from
     // the rear axle centre).

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ugv/runtime/config.hpp"
+#include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/traverse/traversability.hpp"
 
 namespace ugv::traverse_daemon {
@@ -20,6 +21,7 @@ struct TraverseConfig
     // Maps stamped beyond these from the bus clock are refused (runtime/stamp_gate.hpp); a
     // map older than [classifier] max_age_s would be all UNKNOWN.
     int64_t max_stamp_ahead_us = 2'000'000;
+    runtime::StampSkewLimits stamp_skew;  // max_stamp_skew_s, max_stamp_lag_s: the clock-disagreement flag
     int64_t max_stamp_age_us = 60'000'000;
     traverse::TraverseConfig analysis;
 };

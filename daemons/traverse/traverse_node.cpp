@@ -71,7 +71,7 @@ int run(daemon::Daemon& d, const TraverseConfig& config)
     bool dropping = false;  // DEGRADED because every map is dropped
     // While every map is refused for its stamp: DEGRADED, saying so; RUNNING again once one
     // is taken. A map older than max_age_s would be all UNKNOWN.
-    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.max_stamp_age_us},
+    daemon::InputStamps stamps(d, {.max_ahead_us = config.max_stamp_ahead_us, .max_age_us = config.max_stamp_age_us, .skew = config.stamp_skew},
                                [&] {
                                    if (any_published) d.ready();
                                });

@@ -108,6 +108,7 @@ Fix Interpreter::fix_from_position(const Position& p, FrameKind kind, int64_t ar
     if (f.time_from_receiver) {
         f.utime = gps_to_unix_utime(h.week, h.ms, config_.leap_seconds);
         clock_.update(arrival, f.utime);
+        host_clock_.update(fallback_utime(arrival, bytes), f.utime);
     } else {
         f.utime = fallback_utime(arrival, bytes);
     }
@@ -157,6 +158,7 @@ Fix Interpreter::fix_from_gga(const Gga& g, int64_t arrival, std::size_t bytes)
     if (f.time_from_receiver) {
         f.utime = utc_time_of_day_to_utime(g.utc_time_s, arrival);
         clock_.update(arrival, f.utime);
+        host_clock_.update(fallback_utime(arrival, bytes), f.utime);
         uint32_t week = 0, ms = 0;
         unix_utime_to_gps(f.utime, config_.leap_seconds, week, ms);
         f.gps_week = static_cast<int32_t>(week);

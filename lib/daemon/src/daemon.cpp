@@ -16,6 +16,7 @@
 #include "status_message.hpp"
 #include "ugv/bus/typed.hpp"
 #include "ugv/io/clock.hpp"
+#include "ugv/runtime/host_clock.hpp"
 #include "ugv/runtime/realtime.hpp"
 #include "ugv/runtime/stop_signals.hpp"
 
@@ -105,6 +106,7 @@ Daemon::Daemon(Options options, int argc, char** argv) : options_(std::move(opti
     if (!replay_path_.empty() && out_path_.empty()) exit_config_error(options_.name + ": --replay needs --out");
     if (replay_path_.empty() && !out_path_.empty()) exit_config_error(options_.name + ": --out needs --replay");
     replaying_ = !replay_path_.empty();
+    io::clock_test_offset_us();  // a bad UGV_CLOCK_OFFSET_S exits 2 with its line, before anything runs
 
     auto logger = spdlog::stderr_color_mt(options_.name);
     spdlog::set_default_logger(logger);
@@ -170,6 +172,9 @@ void Daemon::start()
     runtime::install_stop_signals();
     start_us_ = io::monotonic_us();
     spdlog::info("{} {} started on {}", options_.name, UGV_VERSION, in_->describe());
+    if (const int64_t off = io::clock_test_offset_us(); off != 0)
+        spdlog::warn("{} = {:.6f} s: every time stamp of this process is shifted (a test aid, docs/time.md)",
+                     io::kClockOffsetEnv, static_cast<double>(off) * 1e-6);
 }
 
 void Daemon::set_state(State state, const std::string& error)
@@ -280,6 +285,10 @@ void Daemon::publish_status()
     bus_counters.publish_failures = out_->counters().publish_failures;
     bus_counters.visit([&counters](std::string_view name, auto value) {
         counters.emplace_back("bus_" + std::string(name), static_cast<int64_t>(value));
+    });
+    // The host clock's synchronisation (docs/time.md), read each second: chrony may lose it.
+    runtime::read_host_clock().visit([&counters](std::string_view name, int64_t value) {
+        counters.emplace_back(std::string(name), value);
     });
     const auto msg = make_status_message(io::now_utime(), status_seq_++, options_.name, instance_,
                                          wire_state(state_.load()), err, io::monotonic_us() - start_us_, counters);

@@ -21,7 +21,10 @@ bool InputStamps::accept(int input, int64_t stamp_us)
     case runtime::StampChange::cleared: on_cleared_(); break;
     case runtime::StampChange::none: break;
     }
-    if (!ok) runtime::set_all(d_.counters(), gate_.counters());
+    if (gate_.counters() != published_) {
+        published_ = gate_.counters();
+        runtime::set_all(d_.counters(), published_);
+    }
     return ok;
 }
 

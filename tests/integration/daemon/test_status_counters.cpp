@@ -17,6 +17,7 @@
 #include "ugv/microstrain_gx1/session.hpp"
 #include "ugv/novatel/session.hpp"
 #include "ugv/runtime/counters.hpp"
+#include "ugv/runtime/host_clock.hpp"
 #include "ugv/runtime/stamp_gate.hpp"
 #include "ugv/sick_lms2xx/session.hpp"
 #include "ugv_test/process.hpp"
@@ -94,6 +95,20 @@ TEST_CASE("status: every library counter of every daemon is in its first STATUS 
                 CHECK(published.count(name) == 1);
             }
             CHECK(published.count("bus_decode_failures") == 1);  // the runtime's own, appended
+            // The host clock's state (docs/time.md), appended by the runtime to every daemon's.
+            for (const std::string& name : runtime::counter_names(runtime::HostClockState{})) {
+                INFO(c.program << " publishes " << name);
+                CHECK(published.count(name) == 1);
+            }
+            const auto value_of = [&s](const std::string& name) {
+                for (std::size_t k = 0; k < s.counter_names.size(); ++k)
+                    if (s.counter_names[k] == name) return s.counter_values[k];
+                return int64_t{-2};
+            };
+            // What the kernel says of this machine's clock: a flag and, once read, errors >= 0.
+            CHECK((value_of("host_clock_synchronised") == 0 || value_of("host_clock_synchronised") == 1));
+            CHECK(value_of("host_clock_max_error_us") >= 0);
+            CHECK(value_of("host_clock_test_offset_us") == 0);
         }
         ++port;
     }

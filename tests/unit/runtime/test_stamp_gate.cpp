@@ -113,3 +113,111 @@ TEST_CASE("StampGate: an input refused for the whole interval is reported until 
     CHECK(gate.accept(imu, now, now));
     CHECK(gate.rejecting().empty());
 }
+
+TEST_CASE("StampGate: stamps ahead of the clock beyond max_stamp_skew_s raise the clock flag at once")
+{
+    StampGate gate({.max_ahead_us = 2'000'000, .max_age_us = 2'000'000,
+                    .skew = {.max_skew_us = 50'000, .max_lag_us = 1'000'000}});
+    const int imu = gate.add_input("IMU");
+    const int fix = gate.add_input("GPS_FIX");
+    int64_t now = kNow;
+    // Within the bounds: ahead by up to 50 ms, late by up to 1 s; no flag.
+    for (int k = 0; k < 50; ++k, now += 20'000) {
+        CHECK(gate.accept(imu, now + (k % 2 == 0 ? 50'000 : -900'000), now));
+        CHECK(gate.accept(fix, now - 200'000, now));
+    }
+    CHECK(gate.counters().clock_skew == 0);
+    CHECK(gate.counters().stamps_skewed == 0);
+    CHECK(gate.skewed().empty());
+    // The IMU's sender is 0.3 s ahead (its messages still taken): flagged by the first one.
+    CHECK(gate.accept(imu, now + 300'000 - 2'000, now));
+    CHECK(gate.counters().clock_skew == 1);
+    CHECK(gate.counters().clock_skew_us == 298'000);
+    CHECK(gate.counters().clock_skew_events == 1);
+    CHECK(gate.skewed().find("IMU stamped 0.298 s ahead of the clock") != std::string::npos);
+    for (int k = 0; k < 10; ++k) {
+        now += 20'000;
+        CHECK(gate.accept(imu, now + 300'000 - 1'000, now));
+    }
+    CHECK(gate.counters().clock_skew_us == 299'000);  // the most it was ahead: its sender's clock is at least that
+    CHECK(gate.counters().stamps_skewed == 11);
+    CHECK(gate.counters().clock_skew_events == 1);
+    // Right again: the flag holds for the window after the last early stamp, then clears.
+    now += 20'000;
+    CHECK(gate.accept(imu, now - 1'000, now));
+    CHECK(gate.counters().clock_skew == 1);
+    now += StampGate::kSkewWindowUs;
+    CHECK(gate.accept(imu, now - 1'000, now));
+    CHECK(gate.counters().clock_skew == 0);
+    CHECK(gate.counters().clock_skew_us == 0);
+    CHECK(gate.skewed().empty());
+}
+
+TEST_CASE("StampGate: an input late beyond max_stamp_lag_s is flagged only when every stamp of a window is")
+{
+    StampGate gate({.max_ahead_us = 2'000'000, .max_age_us = 5'000'000,
+                    .skew = {.max_skew_us = 50'000, .max_lag_us = 1'000'000}});
+    const int pose = gate.add_input("POSE");
+    int64_t now = kNow;
+    // Single slow deliveries among good ones: counted, never flagged.
+    for (int k = 0; k < 40; ++k, now += 100'000) CHECK(gate.accept(pose, now - (k % 3 == 1 ? 1'500'000 : 400'000), now));
+    CHECK(gate.counters().stamps_skewed == 13);
+    CHECK(gate.counters().clock_skew == 0);
+    // The sender's clock 1.2 s behind: every pose 1.6 s late; flagged once the run spans the window.
+    const int64_t start = now;
+    while (now - start < StampGate::kSkewWindowUs) {
+        CHECK(gate.accept(pose, now - 1'600'000, now));
+        CHECK(gate.counters().clock_skew == 0);
+        now += 100'000;
+    }
+    CHECK(gate.accept(pose, now - 1'600'000, now));
+    CHECK(gate.counters().clock_skew == 1);
+    CHECK(gate.counters().clock_skew_us == -1'600'000);  // at most that far behind
+    CHECK(gate.skewed().find("POSE stamped 1.600 s behind the clock") != std::string::npos);
+    // One pose within the bound clears it.
+    now += 100'000;
+    CHECK(gate.accept(pose, now - 400'000, now));
+    CHECK(gate.counters().clock_skew == 0);
+}
+
+TEST_CASE("StampGate: refused stamps never raise the clock flag; extremes do not overflow")
+{
+    StampGate gate({.max_ahead_us = 2'000'000, .max_age_us = 2'000'000});
+    const int in = gate.add_input("POINTS");
+    CHECK_FALSE(gate.accept(in, kMax, kNow));
+    CHECK_FALSE(gate.accept(in, kMin, kNow));
+    CHECK(gate.counters().clock_skew == 0);
+    StampGate wide({.max_ahead_us = kMax, .max_age_us = kMax});
+    const int w = wide.add_input("POINTS");
+    CHECK(wide.accept(w, kMax, 0));
+    CHECK(wide.counters().clock_skew_us == kMax);
+    CHECK(wide.counters().clock_skew == 1);
+    CHECK(wide.accept(w, 0, kMax));  // a window later and 2^63 late: early over, the late run only begun
+    CHECK(wide.counters().clock_skew == 0);
+}
+
+TEST_CASE("max_stamp_skew_s and max_stamp_lag_s: defaults, values and one-line errors")
+{
+    using ugv::runtime::Config;
+    using ugv::runtime::ConfigError;
+    Config empty = Config::empty();
+    const auto d = ugv::runtime::read_stamp_skew_limits(empty, 2'000'000);
+    CHECK(d.max_skew_us == 50'000);
+    CHECK(d.max_lag_us == 1'000'000);
+    Config set = Config::parse("max_stamp_skew_s = 0.002\nmax_stamp_lag_s = 0.5\n", "pose.toml");
+    const auto s = ugv::runtime::read_stamp_skew_limits(set, 2'000'000);
+    CHECK(s.max_skew_us == 2'000);
+    CHECK(s.max_lag_us == 500'000);
+    const auto error_of = [](const std::string& text) {
+        try {
+            Config c = Config::parse(text, "pose.toml");
+            ugv::runtime::read_stamp_skew_limits(c, 2'000'000);
+        } catch (const ConfigError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(error_of("max_stamp_skew_s = 3\n") == "pose.toml: max_stamp_skew_s: must not exceed max_stamp_ahead_s");
+    CHECK(error_of("max_stamp_lag_s = -1\n").rfind("pose.toml: max_stamp_lag_s: ", 0) == 0);
+    CHECK(error_of("max_stamp_skew_s = \"x\"\n").rfind("pose.toml: max_stamp_skew_s: ", 0) == 0);
+}

@@ -86,6 +86,10 @@ public:
                               std::size_t frame_bytes);
 
     const ClockOffsetTracker& clock() const { return clock_; }
+    // The host clock's offset from GPS time: the frame's arrival less its transmission time
+    // and output_latency (what the arrival fallback would stamp) minus the receiver's time;
+    // updated while the receiver's time is FINE. Output latency not configured stays in it.
+    const ClockOffsetTracker& host_clock() const { return host_clock_; }
     // The receiver's last time status (binary/ASCII logs), time_status::unknown before any.
     uint32_t last_time_status() const { return last_time_status_; }
     uint64_t superseded() const { return superseded_; }  // messages dropped for a better source
@@ -105,6 +109,7 @@ private:
 
     InterpreterConfig config_;
     ClockOffsetTracker clock_;
+    ClockOffsetTracker host_clock_;
     uint32_t last_time_status_ = 20;
     uint64_t superseded_ = 0;
     SourceTimes position_seen_{};

@@ -20,16 +20,20 @@ public:
     // An input (its channel, named in the log line and the reason); returns its id.
     int add_input(std::string channel) { return gate_.add_input(std::move(channel)); }
     // True when the stamp is sane against the bus clock; else counted (STATUS) and logged.
+    // A taken stamp may still raise the clock-disagreement flag (StampGate, docs/time.md).
     bool accept(int input, int64_t stamp_us);
     // Every message of some input refused for a while: the daemon says DEGRADED.
     bool refusing() const { return !gate_.rejecting().empty(); }
     const std::string& reason() const { return gate_.rejecting(); }
     const runtime::StampCounters& counters() const { return gate_.counters(); }
+    // "" unless some input's stamps disagree with the clock by more than the skew bounds.
+    const std::string& skewed() const { return gate_.skewed(); }
 
 private:
     Daemon& d_;
     runtime::StampGate gate_;
     std::function<void()> on_cleared_;
+    runtime::StampCounters published_;  // what STATUS has
 };
 
 }  // namespace ugv::daemon
