@@ -65,7 +65,11 @@ set(CPACK_DEBIAN_DBGSYM_PACKAGE_NAME ugv-dbgsym)
 set(CPACK_DEBIAN_DBGSYM_PACKAGE_SECTION debug)
 set(CPACK_DEBIAN_DBGSYM_PACKAGE_DEPENDS "ugv (= ${PROJECT_VERSION})")
 set(CPACK_DEBIAN_DBGSYM_PACKAGE_SHLIBDEPS OFF)
-set(CPACK_COMPONENT_DBGSYM_DESCRIPTION "debug symbols for ugv\nThe debug information of the programs and the library in the ugv package,\nfound by gdb and systemd-coredump through each file's build-id.")
+# CPack makes the synopsis of both from CPACK_PACKAGE_DESCRIPTION_SUMMARY; these are the
+# extended descriptions.
+set(CPACK_COMPONENT_UGV_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION}")
+set(CPACK_COMPONENT_DBGSYM_DESCRIPTION "Debug symbols for the ugv package: the debug information of its programs and\n\
+library, found by gdb and systemd-coredump through each file's build-id.")
 
 # conffiles: dpkg asks before replacing an edited /etc/ugv/* file, and purge removes them.
 set(conffiles "${UGV_DEBIAN_DIR}/conffiles")
