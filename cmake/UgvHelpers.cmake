@@ -51,6 +51,7 @@ function(ugv_add_program)
   target_link_libraries(${P_NAME} PRIVATE ugv_warnings ${P_LIBS})
   set_target_properties(${P_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bin)
   install(TARGETS ${P_NAME} RUNTIME DESTINATION bin)
+  set_property(GLOBAL APPEND PROPERTY UGV_PACKAGED_ELF ${P_NAME})   # its symbols go to ugv-dbgsym
 endfunction()
 
 # ugv_add_library(NAME ugv_xyz SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
