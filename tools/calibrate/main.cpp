@@ -5,12 +5,14 @@
 // Exit status: 0 with an estimate, 2 when the log cannot give one (the reason in one line).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string>
 
 #include "laser_command.hpp"
 
 int main(int argc, char** argv)
 {
     CLI::App app{"mounts estimated from a log instead of a tape measure"};
+    app.set_version_flag("--version", std::string("ugv-calibrate ") + UGV_VERSION);
     app.require_subcommand(1);
     ugv::calibrate_tool::LaserCommand laser(app);
     try {

@@ -13,6 +13,7 @@
 int main(int argc, char** argv)
 {
     CLI::App app{"ugv-redecode: decode a log's RAW_* channels again and compare with what was published"};
+    app.set_version_flag("--version", std::string("ugv-redecode ") + UGV_VERSION);
     std::string log;
     ugv::redecode::Options o;
     app.add_option("LOG", log, "LCM log recorded with publish_raw on")->required()->check(CLI::ExistingFile);
