@@ -6,8 +6,8 @@
 #   loaded machine), POSE at the IMU's rate +/- 5 % (one pose after each IMU sample),
 #   TERRAIN_MAP at its configured 4 Hz +/- 5 %, no sequence gap on any channel, every process
 #   stopped cleanly, and the last map against the truth height field (cells within 0.3 m of a
-#   step left out): RMSE <= 0.06 m, |bias| <= 0.05 m (the map inherits the pose's height error: the RTK receiver's height sigma is
-#   3 cm per fix), coverage >= 0.15. Measured: RMSE 0.02-0.035 m, bias -0.021..+0.011 m
+#   step left out): RMSE <= 0.06 m, |bias| <= 0.05 m (the map inherits the pose's height
+#   error: the RTK receiver's height sigma is 3 cm per fix), coverage >= 0.15. Measured: RMSE 0.02-0.035 m, bias -0.021..+0.011 m
 #   (docs/performance.md). The simulator's IMU and GPS are pinned to the "white" error models:
 #   the GX1's filter ("ahrs", the default) tilts the map by its false tilt while the vehicle
 #   accelerates, which the pose does not yet remove (issue 26, item 2); these thresholds are
