@@ -97,6 +97,7 @@ void EgocentricGrid::clear()
     free_count_ = 0;
     std::fill(slot_.begin(), slot_.end(), kNoSlot);
     m_i_ = 0;
+    m_j_ = 0;
 }
 
 void EgocentricGrid::clear_rows(int first_unwrapped_row, int rows)
@@ -111,6 +112,37 @@ void EgocentricGrid::clear_rows(int first_unwrapped_row, int rows)
         }
     }
     compact_if_sparse();
+}
+
+int EgocentricGrid::clear_columns(int first_unwrapped_column, int columns)
+{
+    int cleared = 0;
+    for (int i = 0; i < nx_; ++i) {
+        for (int j = first_unwrapped_column; j < first_unwrapped_column + columns; ++j) {
+            uint32_t& s = slot_[static_cast<std::size_t>(physical(i, j))];
+            if (s == kNoSlot) continue;
+            free_slot(s);
+            s = kNoSlot;
+            ++cleared;
+        }
+    }
+    compact_if_sparse();
+    return cleared;
+}
+
+int EgocentricGrid::shift_columns(int columns)
+{
+    if (columns == 0) return 0;
+    const int n = std::min(std::abs(columns), ny_);
+    if (columns > 0) {
+        // Unwrapped columns 0 .. n-1 leave on the right; they become the far left ones.
+        const int cleared = clear_columns(0, n);
+        m_j_ = (m_j_ + n) % ny_;
+        return cleared;
+    }
+    const int cleared = clear_columns(ny_ - n, n);
+    m_j_ = ((m_j_ - n) % ny_ + ny_) % ny_;
+    return cleared;
 }
 
 void EgocentricGrid::wrap_forward(int rows)
@@ -152,6 +184,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
                                   static_cast<float>(1.0 / ny_),
                                   static_cast<float>(m_i_),
                                   static_cast<float>(m_i_) * ny_f_,
+                                  static_cast<float>(m_j_),
                                   static_cast<float>(c * u + s * v),
                                   static_cast<float>(c * v - s * u - y_min_m_ / grid_m_),
                                   nx_ * ny_};
@@ -165,6 +198,7 @@ int EgocentricGrid::transform(double angle_rad, double pivot_x_m, double pivot_y
     const int merges = kernels.find_merges(working_slot_.data(), home_.data(), placed_.data(), used_,
                                            merge_from_.data(), merge_into_.data());
     slot_.swap(working_slot_);
+    m_j_ = 0;  // the kernel wrote the turned cells with no column shift
     // The kernel listed the dropped slots after the free ones: count them in before the
     // merges list theirs.
     free_count_ += static_cast<uint32_t>(target.drops);

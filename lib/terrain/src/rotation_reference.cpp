@@ -59,7 +59,7 @@ int EgocentricGrid::transform_reference(double angle_rad, double pivot_x_m, doub
             // not kept, so the two variances mix by cos^2 and sin^2.
             const double w_var_x = std::max(0.0, a.x_wx2 - static_cast<double>(a.x_wx) * a.x_wx / w);
             const double w_var_y = std::max(0.0, a.y_wy2 - static_cast<double>(a.y_wy) * a.y_wy / w);
-            const int to = physical(i_new, j_new);
+            const int to = i_new * ny_ + j_new;  // unwrapped: the turned map has no column shift
             Landed& l = landed[static_cast<std::size_t>(to)];
             if (!l.any) {
                 l.any = true;
@@ -82,15 +82,24 @@ int EgocentricGrid::transform_reference(double angle_rad, double pivot_x_m, doub
             }
         }
     }
-    // The turned map replaces the pool, in unwrapped order.
+    // The turned map replaces the pool, in unwrapped order, with no column shift (as
+    // transform() leaves it).
     pool_.clear(0, used_);
     used_ = 0;
     free_count_ = 0;
+    m_j_ = 0;
     std::fill(slot_.begin(), slot_.end(), kNoSlot);
+    std::vector<uint8_t> unwrapped_edge;  // near_edge by unwrapped cell, until here
+    if (near_edge) {
+        unwrapped_edge.swap(*near_edge);
+        near_edge->assign(landed.size(), 0);
+    }
     for (int i = 0; i < nx_; ++i) {
         for (int j = 0; j < ny_; ++j) {
             const int cell = physical(i, j);
-            const Landed& l = landed[static_cast<std::size_t>(cell)];
+            const std::size_t k = static_cast<std::size_t>(i * ny_ + j);
+            if (near_edge) (*near_edge)[static_cast<std::size_t>(cell)] = unwrapped_edge[k];
+            const Landed& l = landed[k];
             if (!l.any) continue;
             const int slot = static_cast<int>(take_slot(cell));
             CellSums& sums = pool_.sums(slot);

@@ -9,8 +9,13 @@
 // entries, however wide it is; the centroid terms of the exact path (share times the
 // offset of its part's centroid, and times its square) are non-zero only in the footprint's
 // edge cells and take the same corners. A spread point adds one record at each of its 16
-// corners here; flush() forms the running sums over the corners' box once and adds each
-// touched cell's total to the map, as one sample set (add_sums). The result equals the
+// corners here; flush() forms the running sums once and adds each touched cell's total to
+// the map, as one sample set (add_sums). The running sums are formed only where a pending
+// footprint lies, not over their bounding box (a nodding laser's arcs cross the whole map
+// but cover a band of it): along a row, the prefix of a row's corners is zero outside the
+// columns its footprints span (each footprint's corners in a row sum to zero); down a
+// column, the running sum is zero once its count returns to 0 (counts are whole numbers,
+// exact in double), and the column then leaves the active set. The result equals the
 // exact path (TerrainMapper, spread_exact) up to rounding: the corners and running sums are
 // in double, the fractions in float as the exact path takes them.
 //
@@ -47,8 +52,11 @@ public:
         : rows_(rows),
           columns_(columns),
           stride_(static_cast<std::size_t>(columns) + 2),
+          words_((stride_ + 63) / 64),
           corner_storage_(((static_cast<std::size_t>(rows) + 3) * stride_ + 1) * kCornerComponents),
-          extremes_(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns))
+          extremes_(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns)),
+          spans_((static_cast<std::size_t>(rows) + 2) * words_),
+          active_(words_)
     {
         // Records aligned to their size (a vector of them would not be: operator new gives 16).
         void* p = corner_storage_.data();
@@ -74,15 +82,12 @@ public:
             newest_ms_ = t_ms;
             row_lo_ = ax.at[0];
             row_hi_ = ax.at[3];
-            col_lo_ = ay.at[0];
-            col_hi_ = ay.at[3];
         } else {
             newest_ms_ = std::max(newest_ms_, t_ms);
             row_lo_ = std::min(row_lo_, ax.at[0]);
             row_hi_ = std::max(row_hi_, ax.at[3]);
-            col_lo_ = std::min(col_lo_, ay.at[0]);
-            col_hi_ = std::max(col_hi_, ay.at[3]);
         }
+        mark_span(ax.at, ay.at[0], ay.at[3]);
         const double dz = static_cast<double>(z) - z0_;
         const double wd = static_cast<double>(w);
         const double wz = wd * dz, wz2 = wz * dz;
@@ -124,18 +129,45 @@ public:
         if (!pending_) return;
         pending_ = false;
         const CellArrays cells(grid.cells());
-        std::fill(running_ + col_lo_, running_ + col_hi_ + 1, Record{});
         for (int i = row_lo_; i <= row_hi_; ++i) {
             Record* line = corners_ + static_cast<std::size_t>(i) * stride_;
+            uint64_t* span = spans_.data() + static_cast<std::size_t>(i) * words_;
+            // The prefix of the row's corners into the running sums, over the columns its
+            // footprints span; across a gap between spans it is zero up to rounding.
             Record along{};
-            for (int j = col_lo_; j <= col_hi_; ++j) {
-                along += line[j];
-                line[j] = Record{};
-                Record& total = running_[static_cast<std::size_t>(j)];
-                total += along;
-                // A cell outside every footprint holds rounding only; a touched one N >= 1.
-                if (i < rows_ && j < columns_ && total[kN] > 0.5) add_to(grid, cells, i, j, total);
+            int last = -2;
+            for (std::size_t word = 0; word < words_; ++word) {
+                active_[word] |= span[word];
+                for (uint64_t bits = span[word]; bits != 0; bits &= bits - 1) {
+                    const int j = static_cast<int>(word * 64) + __builtin_ctzll(bits);
+                    if (j != last + 1) along = Record{};
+                    last = j;
+                    along += line[j];
+                    line[j] = Record{};
+                    running_[j] += along;
+                }
+                span[word] = 0;
             }
+            // The running sums of the columns an open footprint covers: each touched cell's
+            // total into the grid. A column whose count is back to 0 holds rounding only.
+            for (std::size_t word = 0; word < words_; ++word) {
+                for (uint64_t bits = active_[word]; bits != 0; bits &= bits - 1) {
+                    const int j = static_cast<int>(word * 64) + __builtin_ctzll(bits);
+                    Record& total = running_[j];
+                    if (total[kN] > 0.5) {
+                        if (i < rows_ && j < columns_) add_to(grid, cells, i, j, total);
+                    } else {
+                        total = Record{};
+                        active_[word] &= ~(uint64_t{1} << (j & 63));
+                    }
+                }
+            }
+        }
+        // Every footprint closes by its last corner row; what is left is rounding.
+        for (std::size_t word = 0; word < words_; ++word) {
+            for (uint64_t bits = active_[word]; bits != 0; bits &= bits - 1)
+                running_[static_cast<int>(word * 64) + __builtin_ctzll(bits)] = Record{};
+            active_[word] = 0;
         }
     }
 
@@ -143,9 +175,15 @@ public:
     void discard()
     {
         if (!pending_) return;
-        for (int i = row_lo_; i <= row_hi_; ++i)
-            std::fill_n(corners_ + static_cast<std::size_t>(i) * stride_ + col_lo_, col_hi_ - col_lo_ + 1,
-                        Record{});
+        for (int i = row_lo_; i <= row_hi_; ++i) {
+            Record* line = corners_ + static_cast<std::size_t>(i) * stride_;
+            uint64_t* span = spans_.data() + static_cast<std::size_t>(i) * words_;
+            for (std::size_t word = 0; word < words_; ++word) {
+                for (uint64_t bits = span[word]; bits != 0; bits &= bits - 1)
+                    line[static_cast<int>(word * 64) + __builtin_ctzll(bits)] = Record{};
+                span[word] = 0;
+            }
+        }
         std::fill(extremes_.begin(), extremes_.end(), CellExtremes{});
         pending_ = false;
     }
@@ -210,6 +248,24 @@ private:
         return true;
     }
 
+    // Columns lo .. hi (inclusive; at most 2 kMaxSpreadCells + 2 of them, so in one word or
+    // two) of the four corner rows are spanned by a pending footprint.
+    void mark_span(const int* rows, int lo, int hi)
+    {
+        static_assert(2 * kMaxSpreadCells + 2 <= 64);
+        const std::size_t first = static_cast<std::size_t>(lo >> 6), last = static_cast<std::size_t>(hi >> 6);
+        const uint64_t from_lo = ~uint64_t{0} << (lo & 63), to_hi = ~uint64_t{0} >> (63 - (hi & 63));
+        for (int a = 0; a < 4; ++a) {
+            uint64_t* span = spans_.data() + static_cast<std::size_t>(rows[a]) * words_;
+            if (first == last) {
+                span[first] |= from_lo & to_hi;
+            } else {
+                span[first] |= from_lo;
+                span[last] |= to_hi;
+            }
+        }
+    }
+
     template <class Grid>
     void add_to(Grid& grid, const CellArrays& cells, int i, int j, const Record& total)
     {
@@ -236,7 +292,7 @@ private:
             add_sums(a, b);
         }
         CellTally& tally = cells.tallies[at];
-        tally.count += static_cast<uint32_t>(std::llround(total[kN]));
+        tally.count += static_cast<uint32_t>(total[kN] + 0.5);  // a whole number >= 1, exact in double
         tally.newest_ms = std::max(tally.newest_ms, newest_ms_);
         CellExtremes& own = extremes_[static_cast<std::size_t>(i) * static_cast<std::size_t>(columns_) +
                                       static_cast<std::size_t>(j)];
@@ -245,15 +301,17 @@ private:
     }
 
     int rows_, columns_;
-    std::size_t stride_;
+    std::size_t stride_, words_;  // words_: 64-bit words of a row of column bits
     std::vector<double> corner_storage_;
     Record* corners_;                     // (rows + 2) x (columns + 2), unwrapped; zero where nothing is pending
-    Record* running_;                     // the running sums of the row above, per column
+    Record* running_;                     // the running sums of the row above, per column; zero where not active
     std::vector<CellExtremes> extremes_;  // rows x columns: the pending points' own heights
+    std::vector<uint64_t> spans_;         // per corner row, the columns its pending footprints span
+    std::vector<uint64_t> active_;        // during flush(): the columns an open footprint covers
     bool pending_ = false;
     double z0_ = 0.0;  // the pending heights are taken from the first one's
     TimeTick newest_ms_ = kNoTime;
-    int row_lo_ = 0, row_hi_ = 0, col_lo_ = 0, col_hi_ = 0;  // the pending corners' box
+    int row_lo_ = 0, row_hi_ = 0;  // the pending corners' rows
 };
 
 }  // namespace ugv::terrain::detail

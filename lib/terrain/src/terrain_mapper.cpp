@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <type_traits>
 
 #include "cell_fusion.hpp"
 #include "kernels/kernel_table.hpp"
@@ -54,13 +53,13 @@ inline bool all_finite(float a, float b, float c, float d, float e, float f)
 constexpr float kNanF = std::numeric_limits<float>::quiet_NaN();
 
 // The grids' ring layouts for place_points: the egocentric grid wraps its rows by m_i
-// (eq. 6), the world grid both axes.
+// (eq. 6) and its columns by m_j, the world grid both axes by its own.
 void set_ring(detail::Placement& p, const EgocentricGrid& g)
 {
     p.row_shift = detail::splat(static_cast<float>(g.wrap_index()));
     p.ring_rows = detail::splat(static_cast<float>(g.nx()));
-    p.column_shift = detail::splat(0.0f);
-    p.ring_columns = detail::splat(static_cast<float>(g.ny()));  // a clamped column never reaches it
+    p.column_shift = detail::splat(static_cast<float>(g.column_index()));
+    p.ring_columns = detail::splat(static_cast<float>(g.ny()));
     p.row_stride = detail::splat(static_cast<float>(g.ny()));
 }
 
@@ -235,10 +234,11 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     }
     // Sideways motion (sideslip, or driving with a residual yaw) does not advance the map;
     // once it adds up to whole columns the map is re-centred on the vehicle.
+    // A ring index like the rows' (shift_columns), not a transform: no cell moves.
     const int columns = static_cast<int>(std::trunc(local.y() / g + (local.y() > 0 ? 1e-9 : -1e-9)));
     if (columns != 0) {
         flush_spread();
-        counters_.cells_dropped += static_cast<uint64_t>(ego_->transform(0.0, 0.0, columns * g));
+        counters_.cells_dropped += static_cast<uint64_t>(ego_->shift_columns(columns));
         anchor_m_ += columns * g * ey;
         ++counters_.recentres;
     }
@@ -492,9 +492,7 @@ std::size_t TerrainMapper::fuse_into(Grid& grid, const PointBatch& batch, bool s
         // Chunks of points, two passes each: place_chunk (branch-free, 4 or 8 points at a time),
         // then the sums. Only the rare points (invalid, outside, spread) take a branch.
         constexpr std::size_t kChunk = detail::PlacedPoints::kCapacity;
-        constexpr bool kColumnRing = std::is_same_v<Grid, WorldGrid>;
-        const detail::PlaceChunk place_chunk =
-            kColumnRing ? detail::kernels().place_chunk_world : detail::kernels().place_chunk_egocentric;
+        const detail::PlaceChunk place_chunk = detail::kernels().place_chunk;
         detail::PlacedPoints& placed = *placed_;
         uint64_t fused = 0, non_finite = 0, outside = 0;
         const detail::CellArrays cells(grid.cells());

@@ -281,26 +281,35 @@ void BM_Wrap150_FullRows(benchmark::State& state)
 }
 BENCHMARK(BM_Wrap150_FullRows);
 
-// A sideways move of one column (the re-centring of a sideways drift), left and right in
-// turn, on a full map refilled every 64 moves (outside the timing).
-void BM_ColumnMove150(benchmark::State& state)
+// A sideways move of one column (the re-centring of a sideways drift), each one clearing a
+// column of 150 known cells: one way, on a full map refilled every 64 moves (outside the
+// timing), the direction changing at each refill: by the column ring (what
+// the mapper runs), and by the full transform it replaced (the same map, for the ratio).
+template <bool kByTransform>
+void column_moves(benchmark::State& state)
 {
     const EgocentricGrid full = full_grid();
     EgocentricGrid g = full;
-    int k = 0;
+    int k = 0, columns = 1;
     for (auto _ : state) {
-        benchmark::DoNotOptimize(g.transform(0.0, 0.0, k & 1 ? -0.2 : 0.2));
+        if constexpr (kByTransform)
+            benchmark::DoNotOptimize(g.transform(0.0, 0.0, columns * 0.2));
+        else
+            benchmark::DoNotOptimize(g.shift_columns(columns));
         if (++k == 64) {
             state.PauseTiming();
             g = full;
             k = 0;
+            columns = -columns;
             state.ResumeTiming();
         }
     }
 }
+void BM_ColumnMove150(benchmark::State& state) { column_moves<false>(state); }
 BENCHMARK(BM_ColumnMove150)->Unit(benchmark::kMicrosecond);
+void BM_ColumnMove150_Transform(benchmark::State& state) { column_moves<true>(state); }
+BENCHMARK(BM_ColumnMove150_Transform)->Unit(benchmark::kMicrosecond);
 
-// One forward wrap of one row (eq. 5-8) of a map whose rows are empty after the first pass.
 // A pose update that wraps one row: the whole checkScrollMap path of the mapper.
 void BM_PoseUpdateWrap150(benchmark::State& state)
 {

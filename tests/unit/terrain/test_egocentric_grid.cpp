@@ -519,3 +519,101 @@ TEST_CASE("a rotation's merged cells keep the newest time of those merged")
     }
     CHECK(merged > 5);
 }
+
+namespace {
+
+// Cell for cell, in unwrapped order: a map moved sideways by the column ring (shifted)
+// against the same map moved by the full transform (moved). The transform rewrites only
+// the x and y sums, in float about the new centre; everything else must be the same bits.
+// Returns the number of known cells.
+int compare_shifted(const EgocentricGrid& shifted, const EgocentricGrid& moved)
+{
+    int known = 0;
+    for (int i = 0; i < moved.nx(); ++i) {
+        for (int j = 0; j < moved.ny(); ++j) {
+            INFO("cell " << i << ", " << j);
+            const CellSums& e = moved.at(i, j);
+            const CellSums& a = shifted.at(i, j);
+            REQUIRE(a.empty() == e.empty());
+            CHECK(shifted.count(i, j) == moved.count(i, j));
+            CHECK(shifted.tally(i, j).newest_ms == moved.tally(i, j).newest_ms);
+            if (e.empty()) {
+                CHECK(std::isnan(shifted.extremes(i, j).z_max_m));
+                continue;
+            }
+            ++known;
+            CHECK(shifted.extremes(i, j).z_max_m == moved.extremes(i, j).z_max_m);
+            CHECK(shifted.extremes(i, j).z_min_m == moved.extremes(i, j).z_min_m);
+            CHECK(a.w == e.w);
+            CHECK(a.z_wz == e.z_wz);
+            CHECK(a.z_ref_m == e.z_ref_m);
+            CHECK(a.z_wz2 == e.z_wz2);
+            CHECK(a.x_wx == Approx(e.x_wx).margin(1e-5 * e.w));
+            CHECK(a.y_wy == Approx(e.y_wy).margin(1e-5 * e.w));
+            CHECK(a.x_wx2 == Approx(e.x_wx2).margin(1e-6 * e.w));
+            CHECK(a.y_wy2 == Approx(e.y_wy2).margin(1e-6 * e.w));
+        }
+    }
+    CHECK(shifted.known_cells() == known);
+    return known;
+}
+
+}  // namespace
+
+// The sideways re-centre is a ring index in Y as the wrap is in X: shift_columns must give
+// the map that transform(0, 0, columns G) gives, the columns that leave cleared and reused
+// on the other side, and every reader (locate, physical, the rotation's kernels and its
+// reference) must follow the column index.
+TEST_CASE("a sideways move by the column ring gives the full transform's map, cell for cell")
+{
+    const SimdLevel level = GENERATE(SimdLevel::generic, SimdLevel::avx2);
+    if (!cpu_runs(level)) return;
+    const ScopedSimdLevel use(level);
+    INFO("simd level " << to_string(level));
+    const double g_m = 0.25;
+    EgocentricGrid shifted(41, 37, g_m);
+    std::mt19937 rng(17);
+    shifted.wrap_forward(13);  // the row ring not at zero either
+    fuse_random(shifted, rng, 0.2f);
+    EgocentricGrid moved = shifted;
+    // Left, right, by several, by more than half the map, and by all of it.
+    int m_j = 0;
+    for (const int columns : {1, -1, 3, -5, 1, 20, -2, 37}) {
+        INFO("shift by " << columns << " columns");
+        const int cleared = shifted.shift_columns(columns);
+        const int dropped = moved.transform(0.0, 0.0, columns * g_m);
+        CHECK(cleared == dropped);
+        m_j = ((m_j + columns) % 37 + 37) % 37;
+        CHECK(shifted.column_index() == m_j);
+        CHECK(moved.column_index() == 0);
+        compare_shifted(shifted, moved);
+        // The columns that came in are empty, and the next samples land in them through
+        // locate() in both maps alike.
+        const int first_new = columns > 0 ? 37 - columns : 0;
+        for (int i = 0; i < 41; ++i)
+            for (int j = first_new; j < first_new + std::min(std::abs(columns), 37); ++j)
+                CHECK(shifted.count(i, j) == 0);
+        std::mt19937 same_a(static_cast<unsigned>(100 + columns)), same_b = same_a;
+        fuse_random(shifted, same_a, 0.7f);
+        fuse_random(moved, same_b, 0.7f);
+        CHECK(compare_shifted(shifted, moved) > 200);
+    }
+    // A rotation after the column ring moved: the kernels read each cell's column through
+    // m_j (turn_and_compare holds them to the reference rotation on a copy).
+    REQUIRE(shifted.shift_columns(4) > 0);
+    REQUIRE(shifted.column_index() != 0);
+    CHECK(turn_and_compare(shifted, 0.087, 0.1, -0.2) > 300);
+    CHECK(shifted.column_index() == 0);
+    fuse_random(shifted, rng, 0.5f);  // the far columns, empty since the last shift, too
+    REQUIRE(shifted.shift_columns(-3) > 0);
+    CHECK(turn_and_compare(shifted, -0.15, 0.0, 0.1) > 300);
+    // A wrap after a column shift clears whole unwrapped rows, whatever m_j.
+    fuse_random(shifted, rng, 0.5f);
+    REQUIRE(shifted.shift_columns(2) > 0);
+    moved = shifted;
+    shifted.wrap_forward(3);
+    for (int i = 38; i < 41; ++i)
+        for (int j = 0; j < 37; ++j) CHECK(shifted.count(i, j) == 0);
+    for (int i = 0; i < 38; ++i)
+        for (int j = 0; j < 37; ++j) CHECK(shifted.count(i, j) == moved.count(i + 3, j));
+}

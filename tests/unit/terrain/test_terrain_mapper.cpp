@@ -411,8 +411,12 @@ MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters, double max_span
     c.max_interpolation_span_s = max_span_s;
     c.split_long_batches = split;
     TerrainMapper m(c);
-    REQUIRE(m.add_pose(pose_at(0, 0.0, 0.0, 0.0, 1e-4)) == PoseHistory::AddResult::added);
-    REQUIRE(m.add_pose(pose_at(20'000, 0.02, 0.001, 0.004, 2e-4)) == PoseHistory::AddResult::added);
+    // A sideways step of 2.5 columns first: the egocentric map's column ring then has m_j = 2
+    // (recentred by shift_columns), which the placement kernels must follow as locate() does.
+    REQUIRE(m.add_pose(pose_at(0, 0.0, -0.5, 0.0, 1e-4)) == PoseHistory::AddResult::added);
+    REQUIRE(m.add_pose(pose_at(10'000, 0.0, 0.0, 0.0, 1e-4)) == PoseHistory::AddResult::added);
+    REQUIRE(m.add_pose(pose_at(30'000, 0.02, 0.001, 0.004, 2e-4)) == PoseHistory::AddResult::added);
+    if (mode == MapMode::egocentric) REQUIRE(m.counters().recentres == 1);
     Points p;
     for (int k = 0; k < 361; ++k) {
         const float a = static_cast<float>(k) * 0.0087f - 1.57f;
@@ -425,7 +429,7 @@ MapSnapshot fuse_mixed_scan(MapMode mode, MapCounters& counters, double max_span
         if (k % 71 == 0) y = 40.0f;   // beyond the map's side
         p.add(x, y, z, var, 0.02f * static_cast<float>(k) / 361.0f, r);
     }
-    m.fuse(p.batch(0));
+    m.fuse(p.batch(10'000));
     counters = m.counters();
     MapSnapshot s;
     m.snapshot(s);

@@ -85,10 +85,9 @@ struct PlacedVector
 
 // The transform into the map (the end transforms of the scan blended at each point's
 // time), eq. 19 variance, weight, cell, offset from the cell centre, and what to do with
-// each point; no branch. kColumnRing: the grid's columns are a ring too (the world-aligned
-// grid). Everything by reference and no helper calls, so that with 8-float vectors it is
+// each point; no branch. Both grids' rows and columns are rings. Everything by reference and no helper calls, so that with 8-float vectors it is
 // inlined into AVX2 code only (see place_chunk_avx2).
-template <bool kColumnRing, class V, class I>
+template <class V, class I>
 inline __attribute__((always_inline)) void place_math(const PlacementOf<V>& p, const V& x, const V& y, const V& z,
                                                       const V& r, const V& v, const V& t, PlacedVector<V, I>& out)
 {
@@ -117,15 +116,12 @@ inline __attribute__((always_inline)) void place_math(const PlacementOf<V>& p, c
     j = __builtin_convertvector(__builtin_convertvector(j < p.ny_last ? j : p.ny_last, I), V);
     out.x_rel = out.l[0] - (i + 0.5f) * p.g;
     out.y_rel = out.l[1] - p.y_min_m - (j + 0.5f) * p.g;
-    // Eq. 6 (and the world ring's columns): physical = ((i + shift) mod rows) * stride + ...,
-    // in float (exact below 2^24 cells; a grid has at most 2^20).
+    // Eq. 6 and its like for columns: physical = ((i + shift) mod rows) * stride + ((j +
+    // shift) mod columns), in float (exact below 2^24 cells; a grid has at most 2^22).
     V row = i + p.row_shift;
     row = row >= p.ring_rows ? row - p.ring_rows : row;
-    V column = j;
-    if constexpr (kColumnRing) {
-        column = column + p.column_shift;
-        column = column >= p.ring_columns ? column - p.ring_columns : column;
-    }
+    V column = j + p.column_shift;
+    column = column >= p.ring_columns ? column - p.ring_columns : column;
     out.cell = __builtin_convertvector(row * p.row_stride + column, I);
     out.fuse = valid & inside & (out.variance_m2 <= p.spread_above_m2);
 }
@@ -146,12 +142,11 @@ inline __attribute__((always_inline)) void store_placed(const PlacedVector<V, I>
 }
 
 // Points first .. first+3 of a chunk (lanes beyond its count are padding) into out.
-template <bool kColumnRing>
 inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float4 r, Float4 v, Float4 t,
                          PlacedPoints& out, std::size_t first)
 {
     PlacedVector<Float4, Int4> placed;
-    place_math<kColumnRing>(p, x, y, z, r, v, t, placed);
+    place_math(p, x, y, z, r, v, t, placed);
     store_placed(placed, out, first);
     out.all_fuse[first / 4] = lane_bits(placed.fuse) == 0xfu;
     // Transposed to one {0, x_rel, y_rel, z} per point.
@@ -167,10 +162,8 @@ inline void place_points(const Placement& p, Float4 x, Float4 y, Float4 z, Float
 // offset; count <= PlacedPoints::kCapacity) into out: place_points four at a time, or
 // eight at a time with AVX2 (fusion_place.cpp).
 using PlaceChunk = void (*)(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
-template <bool kColumnRing>
 void place_chunk_generic(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
 #if defined(UGV_TERRAIN_HAVE_AVX2)
-template <bool kColumnRing>
 void place_chunk_avx2(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out);
 #endif
 

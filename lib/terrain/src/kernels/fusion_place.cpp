@@ -10,28 +10,26 @@ namespace ugv::terrain::detail {
 namespace {
 
 // Points first .. count-1 (first a multiple of 4), four at a time.
-template <bool kColumnRing>
 void place_from(const Placement& p, const float* const* in, std::size_t first, std::size_t count, PlacedPoints& out)
 {
     std::size_t k = first;
     for (; k + 4 <= count; k += 4)
-        place_points<kColumnRing>(p, load4(in[0] + k), load4(in[1] + k), load4(in[2] + k), load4(in[3] + k),
-                                  load4(in[4] + k), load4(in[5] + k), out, k);
+        place_points(p, load4(in[0] + k), load4(in[1] + k), load4(in[2] + k), load4(in[3] + k), load4(in[4] + k),
+                     load4(in[5] + k), out, k);
     if (k < count) {
         // The last 1-3 points, padded (the padding is never read back).
         Float4 last[6] = {};
         for (int a = 0; a < 6; ++a)
             for (std::size_t q = 0; k + q < count; ++q) last[a][q] = in[a][k + q];
-        place_points<kColumnRing>(p, last[0], last[1], last[2], last[3], last[4], last[5], out, k);
+        place_points(p, last[0], last[1], last[2], last[3], last[4], last[5], out, k);
     }
 }
 
 }  // namespace
 
-template <bool kColumnRing>
 void place_chunk_generic(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out)
 {
-    place_from<kColumnRing>(p, in, 0, count, out);
+    place_from(p, in, 0, count, out);
 }
 
 #if defined(UGV_TERRAIN_HAVE_AVX2)
@@ -48,12 +46,11 @@ UGV_AVX2 inline void widen(const Placement& p, PlacementOf<Float8>& q)
 }
 
 // Points first .. first+7 into out (place_points, 8 wide).
-template <bool kColumnRing>
 UGV_AVX2 inline void place_points8(const PlacementOf<Float8>& p, const float* const* in, std::size_t first,
                                    PlacedPoints& out)
 {
     PlacedVector<Float8, Int8> placed;
-    place_math<kColumnRing>(p, load8(in[0] + first), load8(in[1] + first), load8(in[2] + first),
+    place_math(p, load8(in[0] + first), load8(in[1] + first), load8(in[2] + first),
                             load8(in[3] + first), load8(in[4] + first), load8(in[5] + first), placed);
     store_placed(placed, out, first);
     const unsigned bits = lane_bits(placed.fuse);
@@ -78,22 +75,17 @@ UGV_AVX2 inline void place_points8(const PlacementOf<Float8>& p, const float* co
 
 }  // namespace
 
-template <bool kColumnRing>
 UGV_AVX2 void place_chunk_avx2(const Placement& p, const float* const* in, std::size_t count, PlacedPoints& out)
 {
     PlacementOf<Float8> wide;
     widen(p, wide);
     std::size_t k = 0;
-    for (; k + 8 <= count; k += 8) place_points8<kColumnRing>(wide, in, k, out);
-    place_from<kColumnRing>(p, in, k, count, out);  // the last 1-7 points, four at a time
+    for (; k + 8 <= count; k += 8) place_points8(wide, in, k, out);
+    place_from(p, in, k, count, out);  // the last 1-7 points, four at a time
 }
 
-template void place_chunk_avx2<false>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
-template void place_chunk_avx2<true>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
 
 #endif
 
-template void place_chunk_generic<false>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
-template void place_chunk_generic<true>(const Placement&, const float* const*, std::size_t, PlacedPoints&);
 
 }  // namespace ugv::terrain::detail

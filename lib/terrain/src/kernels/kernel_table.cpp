@@ -10,10 +10,10 @@ namespace ugv::terrain::detail {
 
 namespace {
 
-constexpr KernelTable kGeneric{SimdLevel::generic, place_chunk_generic<false>, place_chunk_generic<true>,
+constexpr KernelTable kGeneric{SimdLevel::generic, place_chunk_generic,
                                turn_slots_generic, find_merges_generic, spread_corners_generic};
 #if defined(UGV_TERRAIN_HAVE_AVX2)
-constexpr KernelTable kAvx2{SimdLevel::avx2, place_chunk_avx2<false>, place_chunk_avx2<true>, turn_slots_avx2,
+constexpr KernelTable kAvx2{SimdLevel::avx2, place_chunk_avx2, turn_slots_avx2,
                             find_merges_avx2, spread_corners_avx2};
 #endif
 

@@ -15,8 +15,7 @@ namespace ugv::terrain::detail {
 struct KernelTable
 {
     SimdLevel level;
-    PlaceChunk place_chunk_egocentric;  // rows a ring (eq. 6)
-    PlaceChunk place_chunk_world;       // rows and columns rings
+    PlaceChunk place_chunk;  // rows and columns rings (eq. 6)
     TurnSlots turn_slots;
     FindMerges find_merges;
     SpreadCorners spread_corners;  // a spread point's summed-area corners

@@ -34,7 +34,8 @@ inline void drop(CellSums* sums, TurnTarget& out, uint32_t first, unsigned lost)
 template <class V>
 struct TurnVectors
 {
-    V c, s, c_g, s_g, cc, ss, g, minus_half_g, nx, ny, inv_ny, ring_rows, row_shift_cells, offset_x, offset_y;
+    V c, s, c_g, s_g, cc, ss, g, minus_half_g, nx, ny, inv_ny, ring_rows, row_shift_cells, column_shift, offset_x,
+        offset_y;
 };
 
 // The two steps of turn_sums that each build does its own way, with results by reference
@@ -77,10 +78,12 @@ inline __attribute__((always_inline)) void turn_sums(const TurnVectors<V>& k, co
     // the new row and column, an FMA to the variances).
     const V inv_w = 1.0f / w;
     // The cell's row and column from its physical index (exact: the grid has fewer than
-    // 2^22 cells, see EgocentricGrid), the row unwrapped (eq. 6).
+    // 2^22 cells, see EgocentricGrid), both unwrapped (eq. 6). The turned cells are written
+    // with no column shift.
     V physical_row, i_old;
     whole_below((home + 0.5f) * k.inv_ny, physical_row);
-    const V j_old = home - physical_row * k.ny;
+    V j_old = home - physical_row * k.ny - k.column_shift;
+    j_old = j_old < zero ? j_old + k.ny : j_old;
     i_old = physical_row - k.ring_rows;
     i_old = i_old < zero ? i_old + k.nx : i_old;
     // Eq. 9-18: the centre plus the remainder (x_re, y_re) = (x_wx, y_wy) / w, turned with the
@@ -145,7 +148,8 @@ void turn_slots_generic(const TurnConstants& t, CellSums* sums, uint32_t* home, 
 {
     const TurnVectors<Float4> k{splat(t.c),  splat(t.s),     splat(t.c_g),          splat(t.s_g),      splat(t.cc),
                                 splat(t.ss), splat(t.g),     splat(t.minus_half_g), splat(t.nx),       splat(t.ny),
-                                splat(t.inv_ny), splat(t.ring_rows), splat(t.row_shift_cells), splat(t.offset_x),
+                                splat(t.inv_ny), splat(t.ring_rows), splat(t.row_shift_cells), splat(t.column_shift),
+                                splat(t.offset_x),
                                 splat(t.offset_y)};
     for (uint32_t first = 0; first < slots; first += 8) {
         const unsigned low = turn4(k, sums, home, first, t.cells, target);
@@ -267,7 +271,8 @@ UGV_AVX2 void turn_slots_avx2(const TurnConstants& t, CellSums* sums, uint32_t* 
 {
     const TurnVectors<Float8> k{splat8(t.c),  splat8(t.s),     splat8(t.c_g),          splat8(t.s_g),      splat8(t.cc),
                                 splat8(t.ss), splat8(t.g),     splat8(t.minus_half_g), splat8(t.nx),       splat8(t.ny),
-                                splat8(t.inv_ny), splat8(t.ring_rows), splat8(t.row_shift_cells), splat8(t.offset_x),
+                                splat8(t.inv_ny), splat8(t.ring_rows), splat8(t.row_shift_cells), splat8(t.column_shift),
+                                splat8(t.offset_x),
                                 splat8(t.offset_y)};
     for (uint32_t first = 0; first < slots; first += 8)
         target.placed[first / 8] = static_cast<uint8_t>(turn8(k, sums, home, first, t.cells, target));

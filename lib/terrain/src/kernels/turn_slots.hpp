@@ -29,6 +29,7 @@ struct TurnConstants
     float nx, ny, inv_ny;         // rows and columns (a row is ny cells), 1/ny
     float ring_rows;              // eq. 6: physical row = (i + m_i) mod nx; m_i
     float row_shift_cells;        // m_i times ny
+    float column_shift;           // m_j: physical column = (j + m_j) mod ny before the turn; 0 after
     float offset_x, offset_y;     // see above (cells)
     int32_t cells;                // nx * ny
 };

@@ -4,6 +4,10 @@
 // docs/ARCHITECTURE.md, "Corrections to the report's equations").
 // Rows are stored as a ring: unwrapped row i lives in physical row (i + m_i) mod nx
 // (eq. 5-6), so a forward wrap is an index update plus clearing the rows left behind.
+// Columns are a ring too, by m_j, so a sideways re-centre by whole columns is likewise an
+// index update plus clearing the columns that leave; a rotation writes its new grid with
+// m_j = 0. Nothing outside the grid sees either index: every reader goes through
+// physical(), and the snapshot is in unwrapped order.
 //
 // The sums of the known cells live in a pool, in no particular order; each cell holds the
 // index of its sums there (its slot) or kNoSlot while it is empty.
@@ -30,6 +34,7 @@ public:
     double grid_size_m() const { return grid_m_; }
     double y_min_m() const { return y_min_m_; }
     int wrap_index() const { return m_i_; }
+    int column_index() const { return m_j_; }  // m_j: physical column = (j + m_j) mod ny
 
     // Hot path: the cell at local (x, y) and the position's offset from its centre.
     // Returns -1 outside the grid (never wrapped in: it would alias onto the far side).
@@ -44,11 +49,12 @@ public:
         y_rel_m = y_m - centre_y_m_[j];
         return physical(i, j);
     }
-    // Cell index of unwrapped (row i, column j) (eq. 6). Branch-free: it is in the fusion loop.
+    // Cell index of unwrapped (row i, column j) (eq. 6, and its like for columns).
+    // Branch-free: it is in the fusion loop.
     int physical(int i, int j) const
     {
-        const int r = i + m_i_;
-        return (r - nx_ * (r >= nx_)) * ny_ + j;
+        const int r = i + m_i_, c = j + m_j_;
+        return (r - nx_ * (r >= nx_)) * ny_ + (c - ny_ * (c >= ny_));
     }
     // An empty cell's sums are those of CellSums{} (and its count 0).
     const CellSums& at(int cell) const
@@ -92,6 +98,12 @@ public:
     // Reversing: the far rows are cleared and become the near rows; m_i goes back.
     void wrap_backward(int rows);
 
+    // The frame moved sideways by whole columns (to the left for columns > 0): the content
+    // moves by -columns, the columns that leave are cleared and become those on the other
+    // side; m_j follows. The same map as transform(0, 0, columns G), without moving a cell.
+    // Returns the number of known cells cleared (those the transform would drop).
+    int shift_columns(int columns);
+
     // Rigid re-anchoring of the whole map (eq. 9-16): a cell's content at local p moves to
     // R(-angle) (p - pivot). Each cell's position is its centre plus its remainder (the
     // mean offset of its samples); the sums are re-expressed about the new cell's centre
@@ -122,11 +134,13 @@ private:
     // below used_ are free (the rotation works on all of them).
     void compact_if_sparse();
     void clear_rows(int first_unwrapped_row, int rows);
+    // Returns the number of known cells cleared.
+    int clear_columns(int first_unwrapped_column, int columns);
 
     int nx_, ny_;
     double grid_m_, y_min_m_;
     float inv_g_, y_min_f_, nx_f_, ny_f_;
-    int m_i_ = 0;
+    int m_i_ = 0, m_j_ = 0;
     std::vector<float> centre_x_m_, centre_y_m_;
     // The pool: slots 0 .. used_ - 1 hold the known cells' sums and counts, in no particular
     // order, and free slots (empty sums, any count: the first free_count_ of free_ list them);
