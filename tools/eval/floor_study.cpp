@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
+#include <unordered_map>
 
 namespace ugv::terrain {
 
@@ -15,6 +17,40 @@ std::vector<FloorStudyCase> report_cases()
 
 namespace {
 
+// The shortest and longest range of the points that fell in each cell of the final map.
+struct RangeTally
+{
+    struct Point
+    {
+        double x, y, range;
+    };
+    std::vector<Point> points;  // world frame
+
+    // Keys on the snapshot's grid: cell boundaries at its origin plus multiples of its resolution.
+    std::unordered_map<int64_t, std::pair<double, double>> per_cell(const MapSnapshot& m) const
+    {
+        const double ox = m.pose.position_m.x() + m.origin_x_m, oy = m.pose.position_m.y() + m.origin_y_m;
+        std::unordered_map<int64_t, std::pair<double, double>> cells;
+        for (const Point& p : points) {
+            auto [it, fresh] = cells.try_emplace(key(p.x, p.y, ox, oy, m.resolution_m), p.range, p.range);
+            it->second.first = std::min(it->second.first, p.range);
+            it->second.second = std::max(it->second.second, p.range);
+        }
+        return cells;
+    }
+    static int64_t key(double x, double y, double ox, double oy, double resolution)
+    {
+        const auto i = static_cast<int64_t>(std::floor((x - ox) / resolution));
+        const auto j = static_cast<int64_t>(std::floor((y - oy) / resolution));
+        return i * 1'000'000 + j;
+    }
+};
+
+struct Trial
+{
+    MapMetrics all, several_ranges;
+};
+
 struct Scan
 {
     std::vector<float> x, y, z, range, variance, t;
@@ -24,7 +60,7 @@ struct Scan
     }
 };
 
-MapMetrics one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const FloorStudyOptions& o, uint64_t seed)
+Trial one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const FloorStudyOptions& o, uint64_t seed)
 {
     MapConfig config;
     config.mode = MapMode::world_aligned;  // the static pose jitters in yaw: no rotations
@@ -39,6 +75,7 @@ MapMetrics one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const 
     const Eigen::Vector3d laser(0.0, 0.0, o.laser_height_m);
 
     Scan scan;
+    RangeTally tally;
     int64_t utime = 1'000'000;
     const int lines = static_cast<int>(std::lround((o.last_line_m - o.first_line_m) / o.line_spacing_m)) + 1;
     Eigen::Vector3d vehicle(0.0, 0.0, 0.0);
@@ -75,6 +112,7 @@ MapMetrics one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const 
             scan.range.push_back(static_cast<float>(r));
             scan.variance.push_back(static_cast<float>(o.range_sigma_m * o.range_sigma_m));
             scan.t.push_back(0.0f);
+            tally.points.push_back({vehicle.x() + p.x(), vehicle.y() + p.y(), r});
         }
         PointBatch batch{utime, scan.x.size(), scan.x.data(), scan.y.data(), scan.z.data(), scan.range.data(),
                          scan.variance.data(), scan.t.data()};
@@ -87,20 +125,27 @@ MapMetrics one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const 
     mapper.add_pose(truth_pose);
     MapSnapshot snapshot;
     mapper.snapshot(snapshot);
-    return evaluate(snapshot, [](double, double) { return 0.0; });
+    Trial trial;
+    trial.all = evaluate(snapshot, [](double, double) { return 0.0; });
+    // The world-aligned map is not turned, so its grid is the world's shifted by the origin.
+    const auto ranges = tally.per_cell(snapshot);
+    const double ox = snapshot.pose.position_m.x() + snapshot.origin_x_m;
+    const double oy = snapshot.pose.position_m.y() + snapshot.origin_y_m;
+    trial.several_ranges = evaluate(snapshot, [&](double x, double y) {
+        const auto it = ranges.find(RangeTally::key(x, y, ox, oy, snapshot.resolution_m));
+        const bool several = it != ranges.end() && it->second.second >= o.several_ranges_ratio * it->second.first;
+        return several ? 0.0 : NAN;
+    });
+    return trial;
 }
 
-}  // namespace
-
-FloorStudyResult run_floor_study(const FloorStudyCase& scenario, StatisticsKind statistics,
-                                 const FloorStudyOptions& options)
+// Sums of trials' metrics, averaged by finish().
+struct MetricsAverage
 {
-    FloorStudyResult result{scenario, statistics, {}};
-    MapMetrics& sum = result.metrics;
-    double rmse2 = 0.0, bias2 = 0.0;
-    for (int k = 0; k < options.trials; ++k) {
-        // The same seed for both statistics: they see the same points.
-        const MapMetrics m = one_trial(scenario, statistics, options, options.seed * 1000 + static_cast<uint64_t>(k));
+    MapMetrics sum;
+    double bias2 = 0.0, rmse2 = 0.0;
+    void add(const MapMetrics& m)
+    {
         sum.cells += m.cells;
         sum.known += m.known;
         sum.bias_m += m.bias_m;
@@ -109,15 +154,37 @@ FloorStudyResult run_floor_study(const FloorStudyCase& scenario, StatisticsKind 
         sum.mean_cell_variance_m2 += m.mean_cell_variance_m2;
         sum.coverage += m.coverage;
     }
-    const double n = options.trials;
-    sum.cells = static_cast<int>(sum.cells / options.trials);
-    sum.known = static_cast<int>(sum.known / options.trials);
-    sum.bias_m /= n;
-    if (options.trials > 1)
-        result.bias_standard_error_m = std::sqrt(std::max(0.0, bias2 / n - sum.bias_m * sum.bias_m) / (n - 1.0));
-    sum.rmse_m = std::sqrt(rmse2 / n);
-    sum.mean_cell_variance_m2 /= n;
-    sum.coverage /= n;
+    // The averages over n trials and the standard error of the mean bias.
+    std::pair<MapMetrics, double> finish(int n) const
+    {
+        MapMetrics m = sum;
+        const double dn = n;
+        m.cells = static_cast<int>(sum.cells / n);
+        m.known = static_cast<int>(sum.known / n);
+        m.bias_m /= dn;
+        m.rmse_m = std::sqrt(rmse2 / dn);
+        m.mean_cell_variance_m2 /= dn;
+        m.coverage /= dn;
+        const double se = n > 1 ? std::sqrt(std::max(0.0, bias2 / dn - m.bias_m * m.bias_m) / (dn - 1.0)) : 0.0;
+        return {m, se};
+    }
+};
+
+}  // namespace
+
+FloorStudyResult run_floor_study(const FloorStudyCase& scenario, StatisticsKind statistics,
+                                 const FloorStudyOptions& options)
+{
+    FloorStudyResult result{scenario, statistics, {}, {}};
+    MetricsAverage all, several;
+    for (int k = 0; k < options.trials; ++k) {
+        // The same seed for both statistics: they see the same points.
+        const Trial t = one_trial(scenario, statistics, options, options.seed * 1000 + static_cast<uint64_t>(k));
+        all.add(t.all);
+        several.add(t.several_ranges);
+    }
+    std::tie(result.metrics, result.bias_standard_error_m) = all.finish(options.trials);
+    result.several_ranges = several.finish(options.trials).first;
     return result;
 }
 

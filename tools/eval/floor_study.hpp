@@ -37,6 +37,9 @@ struct FloorStudyOptions
     // the lines, so each patch is scanned again from nearer (the report's continuous motion).
     double speed_mps = 0.0;
     int nods = 1;
+    // A cell "seen from several ranges": the longest range of its points is at least this
+    // many times the shortest. Only there can weighting by eq. 19 differ from the plain mean.
+    double several_ranges_ratio = 2.0;
 };
 
 struct FloorStudyResult
@@ -44,6 +47,7 @@ struct FloorStudyResult
     FloorStudyCase scenario;
     StatisticsKind statistics;
     MapMetrics metrics;             // averaged over the trials
+    MapMetrics several_ranges;      // the same over the cells seen from several ranges only
     double bias_standard_error_m = 0.0;  // of metrics.bias_m, from the spread between trials
 };
 
