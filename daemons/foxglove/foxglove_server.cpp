@@ -47,8 +47,15 @@ struct WsServer::Impl
     std::map<Handle, Client, std::owner_less<Handle>> clients;
     std::vector<ChannelInfo> channels;
 
+    // Within the client's bound too: a client that sends bad operations and never reads the
+    // answers must not grow the queue.
     void send_text(const Endpoint::connection_ptr& con, const std::string& text)
     {
+        const std::size_t queued = con->get_buffered_amount();
+        if (queued > 0 && queued + text.size() > options.client_queue_bytes) {
+            ++counters.messages_dropped;
+            return;
+        }
         (void)con->send(text, websocketpp::frame::opcode::text);
     }
 
