@@ -16,9 +16,9 @@ struct FoxgloveConfig
     std::string no_raw;           // regex: channels whose own JSON topic is left out (as ugv-mcap --no-raw)
     std::string address = "127.0.0.1";
     int port = 8765;
-    int max_clients = 8;
+    int max_clients = 4;
     // Per client: bytes of messages waiting to be written beyond which new ones are dropped.
-    std::size_t client_queue_bytes = 8u << 20;
+    std::size_t client_queue_bytes = 4u << 20;
     // LCM input may pause this long before the daemon is not RUNNING.
     int64_t health_timeout_us = 5'000'000;
 };
