@@ -10,6 +10,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <thread>
@@ -181,6 +182,10 @@ TEST_CASE("a client that stops reading: memory bounded, drops counted, nothing e
     const int64_t offered_kb = (c.at("encoded") - encoded_before) / 2 * 1300;
     INFO("RSS " << before_kb << " kB -> " << after_kb << " kB; offered ~" << offered_kb << " kB; encoded "
                 << c.at("encoded") << ", sent " << c.at("messages_sent") << ", dropped " << c.at("messages_dropped"));
+    std::printf("stalled client: RSS %lld kB -> %lld kB while ~%lld kB were offered; %lld encoded, %lld sent, %lld dropped\n",
+                static_cast<long long>(before_kb), static_cast<long long>(after_kb), static_cast<long long>(offered_kb),
+                static_cast<long long>(c.at("encoded")), static_cast<long long>(c.at("messages_sent")),
+                static_cast<long long>(c.at("messages_dropped")));
     // The bound: two queues of 256 kB, a frame being written and the allocator's slack.
     CHECK(after_kb - before_kb < 48 * 1024);
     CHECK(offered_kb > 4 * 48 * 1024);
