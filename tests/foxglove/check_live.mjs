@@ -13,6 +13,7 @@ import { McapIndexedReader } from "@mcap/core";
 import wsProtocol from "@foxglove/ws-protocol";
 import WebSocket from "ws";
 import Ajv from "ajv";
+import { checkGridLayout } from "./grid.mjs";
 
 const { FoxgloveClient } = wsProtocol;  // a CommonJS package
 const [url, mcapFile, expectedFile] = process.argv.slice(2);
@@ -120,18 +121,9 @@ client.on("message", ({ subscriptionId, timestamp, data }) => {
 });
 
 function checkGrid(topic, g, want) {
-  const field = (name) => g.fields.find((f) => f.name === name);
-  for (const name of ["height", "variance", "count", "max", "min"])
-    if (!field(name)) fail(`${topic}: no cell field ${name}`);
-  const data = Buffer.from(g.data, "base64");
-  if (g.column_count !== want.nx) fail(`${topic}: column_count ${g.column_count}, the map has nx ${want.nx}`);
-  if (g.row_stride !== g.column_count * g.cell_stride) fail(`${topic}: row_stride ${g.row_stride} != columns x cell_stride`);
-  if (data.length !== want.nx * want.ny * g.cell_stride)
-    fail(`${topic}: ${data.length} bytes of cells, expected ${want.nx} x ${want.ny} x ${g.cell_stride}`);
-  const height = field("height");
-  if (!height || data.length < want.nx * want.ny * g.cell_stride) return;
+  const at = checkGridLayout(topic, g, want, fail);
+  if (!at) return;
   // The sample maps are planes: 0.01 m per column i, -0.02 m per row j, plus the map's index.
-  const at = (i, j) => data.readFloatLE(j * g.row_stride + i * g.cell_stride + height.offset);
   const base = at(1, 0);  // (0, 0) is one of the sample's NaN cells
   for (const [i, j] of [[1, 2], [want.nx - 1, 0], [5, want.ny - 1]]) {
     const z = base + 0.01 * (i - 1) - 0.02 * j;

@@ -6,6 +6,7 @@
 
 #include "node_packages.hpp"
 #include "sample_log.hpp"
+#include "bridge.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
@@ -13,13 +14,6 @@ using namespace ugv;
 namespace {
 
 constexpr int kLivePort = 18760, kLiveLcm = 7934;
-
-std::string config(const test::TempDir& dir, int port, const std::string& extra = "")
-{
-    const std::string path = dir / "foxglove.toml";
-    test::write_file(path, "address = \"127.0.0.1\"\nport = " + std::to_string(port) + "\n" + extra);
-    return path;
-}
 
 }  // namespace
 
@@ -34,9 +28,9 @@ TEST_CASE("Foxglove's client: ugv-mcap's topics and schemas, a subscription, the
                      "{\"optional\":[\"STATUS_FOXGLOVE\",\"STATUS_FOXGLOVE/log\"],\"grid\":{\"topic\":\"TERRAIN_MAP/grid\","
                      "\"nx\":" + std::to_string(test::kMapNx) + ",\"ny\":" + std::to_string(test::kMapNy) +
                          "},\"grids\":2,\"timeout_s\":60}");
-    test::Process bridge({test::bin("ugv-foxglove"), "--config", config(dir, kLivePort), "--lcm-url", test::lcm_url(kLiveLcm)},
+    test::Process bridge({test::bin("ugv-foxglove"), "--config", test::bridge_config(dir, kLivePort), "--lcm-url", test::lcm_url(kLiveLcm)},
                          dir / "bridge.out", dir / "bridge.err");
-    REQUIRE(test::wait_until([&] { return bridge.err().find("serving") != std::string::npos; }, 20));
+    REQUIRE(test::wait_serving(bridge));
     test::Process check({test::which("node"), dir_node + "/check_live.mjs", "ws://127.0.0.1:" + std::to_string(kLivePort),
                          mcap, dir / "expected.json"},
                         dir / "check.out", dir / "check.out");

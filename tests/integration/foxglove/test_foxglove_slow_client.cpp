@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "bridge.hpp"
 #include "ugv/daemon_status_t.hpp"
 #include "ugv/terrain_map_t.hpp"
 #include "ugv_test/process.hpp"
@@ -25,13 +26,6 @@ using namespace ugv;
 namespace {
 
 constexpr int kSlowPort = 18761, kSlowLcm = 7935;
-
-std::string config(const test::TempDir& dir, int port, const std::string& extra = "")
-{
-    const std::string path = dir / "foxglove.toml";
-    test::write_file(path, "address = \"127.0.0.1\"\nport = " + std::to_string(port) + "\n" + extra);
-    return path;
-}
 
 // The daemon's counters from its last STATUS_FOXGLOVE, waited for.
 class StatusReader
@@ -147,10 +141,10 @@ terrain_map_t big_map(int n, int seq)
 TEST_CASE("a client that stops reading: memory bounded, drops counted, nothing encoded unwatched")
 {
     test::TempDir dir;
-    test::Process bridge({test::bin("ugv-foxglove"), "--config", config(dir, kSlowPort, "client_queue_kb = 256\n"),
+    test::Process bridge({test::bin("ugv-foxglove"), "--config", test::bridge_config(dir, kSlowPort, "client_queue_kb = 256\n"),
                           "--lcm-url", test::lcm_url(kSlowLcm)},
                          dir / "bridge.out", dir / "bridge.err");
-    REQUIRE(test::wait_until([&] { return bridge.err().find("serving") != std::string::npos; }, 20));
+    REQUIRE(test::wait_serving(bridge));
     StatusReader status(kSlowLcm);
     lcm::LCM out(test::lcm_url(kSlowLcm));
     constexpr int kCells = 120;  // ~290 kB per LCM message, ~1.3 MB of JSON on its two topics
