@@ -6,7 +6,8 @@
 # With TOPICS = none, no client connects (the bridge's own cost). Prints the CPU as a share
 # of one core over the window and the client's latency per topic. Needs the npm packages of
 # tests/foxglove installed in build/tests/foxglove-node (test_foxglove_live does it).
-# LCM on UGV_BENCH_LCM_PORT (7936), the server on UGV_BENCH_WS_PORT (18762).
+# LCM on UGV_BENCH_LCM_PORT (7936), the server on UGV_BENCH_WS_PORT (18762); more config
+# lines in UGV_BENCH_FOXGLOVE_KEYS (e.g. 'bus_batch_ms = 10').
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${UGV_BIN_DIR:-$root/build/bin}
@@ -16,7 +17,7 @@ topics=("$@"); [ ${#topics[@]} -eq 0 ] && topics=(TERRAIN_MAP/grid POSE/pose POS
 lcm_port=${UGV_BENCH_LCM_PORT:-7936}; ws_port=${UGV_BENCH_WS_PORT:-18762}
 url="udpm://239.255.76.67:$lcm_port?ttl=0&recv_buf_size=4194304"
 work=$(mktemp -d); trap 'kill $fg_pid $player_pid 2>/dev/null; rm -rf "$work"' EXIT
-printf 'address = "127.0.0.1"\nport = %s\n' "$ws_port" >"$work/foxglove.toml"
+printf 'address = "127.0.0.1"\nport = %s\n%s\n' "$ws_port" "${UGV_BENCH_FOXGLOVE_KEYS:-}" >"$work/foxglove.toml"
 "$bin/ugv-foxglove" --config "$work/foxglove.toml" --lcm-url "$url" 2>"$work/foxglove.log" & fg_pid=$!
 sleep 1
 lcm-logplayer --lcm-url="$url" "$log" >/dev/null 2>&1 & player_pid=$!
