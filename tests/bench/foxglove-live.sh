@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Bench: ugv-foxglove's CPU and its latency from LCM to a client, while an lcm-logplayer
 # replay of LOG runs at real speed and one client (tests/foxglove/watch_live.mjs, Foxglove's
-# own client library) watches TOPICS (default: the terrain grid and the pose):
+# own client library) watches TOPICS (default: the terrain grid and the pose); then its
+# resident memory (VmRSS, peak VmHWM):
 #   tests/bench/foxglove-live.sh LOG [SECONDS] [TOPIC...]
 # With TOPICS = none, no client connects (the bridge's own cost). Prints the CPU as a share
 # of one core over the window and the client's latency per topic. Needs the npm packages of
@@ -29,5 +30,6 @@ else node "$node_dir/watch_live.mjs" "ws://127.0.0.1:$ws_port" "$seconds" "${top
 t1=$(cpu_ticks); s1=$(date +%s.%N)
 awk -v t="$((t1 - t0))" -v hz="$(getconf CLK_TCK)" -v s0="$s0" -v s1="$s1" -v c="${topics[*]}" \
   'BEGIN { printf "foxglove-live: ugv-foxglove CPU %.2f %% of one core over %.1f s (client watching: %s)\n", 100 * t / hz / (s1 - s0), s1 - s0, c }'
+grep -E '^Vm(RSS|HWM)' "/proc/$fg_pid/status" | tr -s ' \t' ' ' | paste -sd ' ' | sed 's/^/foxglove-live: ugv-foxglove /'
 kill -TERM $fg_pid; wait $fg_pid 2>/dev/null || true
 tail -n 1 "$work/foxglove.log"
