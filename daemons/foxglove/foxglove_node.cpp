@@ -30,8 +30,7 @@ void FoxgloveNode::make_topics(const std::string& name, std::string_view type, C
     ch.type = type;
     const bool raw = !std::regex_match(name, no_raw_);
     std::vector<ChannelInfo> advertised;
-    for (auto& spec : foxglove::topics_for(name, type)) {
-        if (spec.kind == foxglove::TopicKind::raw && !raw) continue;
+    for (auto& spec : foxglove::topics_for(name, type, raw)) {
         if (next_id_ > WsServer::kMaxChannels) {
             ++counters_.topics_refused;
             continue;
