@@ -36,6 +36,7 @@ FoxgloveConfig read_config(runtime::Config& cfg)
         static_cast<std::size_t>(cfg.get_int("client_queue_kb", static_cast<int64_t>(c.client_queue_bytes >> 10), 64,
                                              1 << 20))
         << 10;
+    c.status_channel = cfg.get_channel("status_channel", c.status_channel);
     c.health_timeout_us = static_cast<int64_t>(std::llround(cfg.get_double("health_timeout_s", 5.0, 0.1, 600.0) * 1e6));
     return c;
 }

@@ -19,6 +19,9 @@ struct FoxgloveConfig
     int max_clients = 4;
     // Per client: bytes of messages waiting to be written beyond which new ones are dropped.
     std::size_t client_queue_bytes = 4u << 20;
+    // The daemon's own status (the template's key, read here too): looped back by the bus,
+    // it is bridged but does not count as input flowing.
+    std::string status_channel = "STATUS_FOXGLOVE";
     // LCM input may pause this long before the daemon is not RUNNING.
     int64_t health_timeout_us = 5'000'000;
 };

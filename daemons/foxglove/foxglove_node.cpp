@@ -119,7 +119,7 @@ int run(daemon::Daemon& d, const FoxgloveConfig& config)
     d.bus().subscribe(config.channels, [&](const std::string& channel, const uint8_t* data, std::size_t size,
                                            int64_t recv_utime) {
         node.on_message(channel, data, size, recv_utime);
-        if (channel == "STATUS_FOXGLOVE") return;
+        if (channel == config.status_channel) return;
         d.mark_output();
         if (!ready) {
             d.ready();
