@@ -110,8 +110,12 @@ int run(daemon::Daemon& d, const FoxgloveConfig& config)
     d.declare_output("LCM messages", config.health_timeout_us);
     const auto sync_counters = [&] {
         runtime::set_all(d.counters(), node.counters());
-        runtime::set_all(d.counters(), node.converter_counters());
         runtime::set_all(d.counters(), server.counters());
+        // The converter's: its malformed (bytes a topic could not decode) adds to the node's.
+        const foxglove::ConverterCounters& conv = node.converter_counters();
+        d.counters()["converted"] = static_cast<int64_t>(conv.converted);
+        d.counters()["unchanged"] = static_cast<int64_t>(conv.unchanged);
+        d.counters()["malformed"] = static_cast<int64_t>(node.counters().malformed + conv.malformed);
     };
     sync_counters();
     d.add_timer(500'000, sync_counters);
