@@ -17,3 +17,8 @@ find_package(Java COMPONENTS Development QUIET)
 find_path(CLI11_INCLUDE_DIR CLI/CLI.hpp REQUIRED)
 find_program(LCM_GEN lcm-gen REQUIRED)
 find_file(LCM_JAR lcm.jar PATHS /usr/share/java NO_DEFAULT_PATH)
+# ugv-foxglove: websocketpp on standalone asio, nlohmann-json (header-only Debian packages:
+# libwebsocketpp-dev libasio-dev nlohmann-json3-dev, from tools/install-deps).
+find_path(WEBSOCKETPP_INCLUDE_DIR websocketpp/server.hpp REQUIRED)
+find_path(ASIO_INCLUDE_DIR asio.hpp REQUIRED)
+find_path(NLOHMANN_JSON_INCLUDE_DIR nlohmann/json.hpp REQUIRED)

@@ -12,6 +12,7 @@ import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { decompress as zstdDecompress } from "fzstd";
 import lz4 from "lz4js";
 import Ajv from "ajv";
+import { checkGridLayout } from "./grid.mjs";
 
 const [file, expectedFile] = process.argv.slice(2);
 const bytes = new Uint8Array(await readFile(file));
@@ -96,18 +97,10 @@ for (let r; (r = stream.nextRecord()); ) {
 if (!footer || !stream.done()) fail("the stream reader did not reach the footer");
 
 function checkGrid(topic, g, want, n) {
-  const field = (name) => g.fields.find((f) => f.name === name);
-  for (const name of ["height", "variance", "count", "max", "min"])
-    if (!field(name)) fail(`${topic}: no cell field ${name}`);
-  const data = Buffer.from(g.data, "base64");
-  if (g.column_count !== want.nx) fail(`${topic}: column_count ${g.column_count}, the map has nx ${want.nx}`);
-  if (g.row_stride !== g.column_count * g.cell_stride) fail(`${topic}: row_stride ${g.row_stride} != columns x cell_stride`);
-  if (data.length !== want.nx * want.ny * g.cell_stride)
-    fail(`${topic}: ${data.length} bytes of cells, expected ${want.nx} x ${want.ny} x ${g.cell_stride}`);
-  const height = field("height");
+  const heightAt = checkGridLayout(topic, g, want, fail);
+  if (!heightAt) return;
   for (const [i, j, z] of want.cells?.[n] ?? []) {
-    // Column i along x, row j along y.
-    const got = data.readFloatLE(j * g.row_stride + i * g.cell_stride + height.offset);
+    const got = heightAt(i, j);
     if (Math.fround(z) !== got) fail(`${topic}: cell (${i}, ${j}) height ${got}, the map ${z}`);
   }
 }

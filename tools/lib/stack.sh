@@ -17,6 +17,10 @@
 #   stack_start_daemons [NAME...] daemons (default: STACK_DAEMONS), config OUT/config/NAME.toml;
 #                                 with several lasers, lms servo nodscan stand for every
 #                                 instance (lms-left lms-right ...), or name one: lms-left
+#   stack_start_foxglove          ugv-foxglove (the live view for Foxglove) on
+#                                 UGV_FOXGLOVE_ADDRESS:UGV_FOXGLOVE_PORT (127.0.0.1:8765), config
+#                                 OUT/config/foxglove.toml; sets and prints STACK_FOXGLOVE_URL
+#                                 (ws://ADDRESS:PORT) once it listens, 1 if it did not come up
 #   stack_stop                    daemons, then simulators, then the logger: SIGTERM, wait up
 #                                 to STACK_STOP_WAIT_S (5) each, SIGKILL and report the rest
 #   stack_counter CH NAME [LOG]   a counter of the daemon status on channel CH (STATUS_LMS):
@@ -218,6 +222,20 @@ stack_write_config() {
         printf '%s' "${STACK_EXTRA[$name]:-}"
         [ -f "$calib" ] && { [ "$name" = "$base" ] || [ "$base" != servo ]; } && cat "$calib"
     } >"$cfg"
+}
+
+stack_start_foxglove() {
+    local address=${UGV_FOXGLOVE_ADDRESS:-127.0.0.1} port=${UGV_FOXGLOVE_PORT:-8765}
+    STACK_EXTRA[foxglove]+="address = \"$address\""$'\n'"port = $port"$'\n'
+    stack_write_config foxglove
+    stack_spawn ugv-foxglove "$STACK_BIN/ugv-foxglove" --config "$STACK_OUT/config/foxglove.toml"
+    local tries=0
+    until grep -q 'serving ' "$STACK_OUT/stderr/ugv-foxglove.log" 2>/dev/null; do
+        stack_alive ugv-foxglove && [ $tries -lt 100 ] || return 1
+        sleep 0.1; tries=$((tries + 1))
+    done
+    STACK_FOXGLOVE_URL=ws://$address:$port
+    echo "ugv-foxglove: $STACK_FOXGLOVE_URL"
 }
 
 stack_start_daemons() {

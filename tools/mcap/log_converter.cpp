@@ -39,8 +39,7 @@ void LogConverter::add(const LogEvent& event)
         // The channel's topics, made when its first ugv message comes.
         ch.type = type;
         const bool raw = !std::regex_match(event.channel.begin(), event.channel.end(), no_raw_);
-        for (auto& spec : foxglove::topics_for(event.channel, type)) {
-            if (spec.kind == foxglove::TopicKind::raw && !raw) continue;
+        for (auto& spec : foxglove::topics_for(event.channel, type, raw)) {
             Topic t;
             t.channel_id = writer_.add_channel(schema_id(spec), spec.topic, "json");
             t.spec = std::move(spec);

@@ -303,11 +303,12 @@ int log_level(int state)
 
 }  // namespace
 
-std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view type_name)
+std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view type_name, bool with_raw)
 {
     if (!reflect::fields_of(type_name)) return {};
     const std::string ch(channel), type(type_name);
-    std::vector<TopicSpec> out{{ch, type, type, TopicKind::raw}};
+    std::vector<TopicSpec> out;
+    if (with_raw) out.push_back({ch, type, type, TopicKind::raw});
     auto add = [&](const char* suffix, const char* schema, TopicKind kind) {
         out.push_back({ch + "/" + suffix, schema, type, kind});
     };

@@ -27,8 +27,8 @@ for dep in liblcm-bin systemd libc6 liblcm1; do
 done
 
 contents=$(dpkg-deb -c "$deb")
-for path in ./usr/bin/ugv-dump ./usr/bin/ugv-logstat ./usr/bin/ugv-sim ./usr/bin/ugv-udev-setup ./usr/lib/systemd/system/ugv.target \
-            ./usr/lib/systemd/system/ugv-lms@.service ./usr/lib/systemd/system/ugv-logger.service ./usr/lib/systemd/system/ugv-traverse.service \
+for path in ./usr/bin/ugv-dump ./usr/bin/ugv-foxglove ./usr/bin/ugv-logstat ./usr/bin/ugv-sim ./usr/bin/ugv-udev-setup ./usr/lib/systemd/system/ugv.target \
+            ./usr/lib/systemd/system/ugv-lms@.service ./usr/lib/systemd/system/ugv-logger.service ./usr/lib/systemd/system/ugv-traverse.service ./usr/lib/systemd/system/ugv-foxglove.service \
             ./usr/lib/sysusers.d/ugv.conf ./usr/lib/sysctl.d/60-ugv-lcm.conf ./usr/lib/ugv/libugv-lcm-queue.so ./usr/share/doc/ugv/ARCHITECTURE.md \
             ./lib/udev/rules.d/60-ugv.rules ./etc/ugv/devices.conf ./usr/share/doc/ugv/copyright ./usr/share/doc/ugv/changelog.gz \
             ./usr/share/ugv/lcmtypes/pose_t.lcm; do

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "node_packages.hpp"
 #include "sample_log.hpp"
 #include "ugv_test/process.hpp"
 
@@ -20,48 +21,6 @@ using namespace ugv;
 namespace fs = std::filesystem;
 
 namespace {
-
-[[noreturn]] void skip(const std::string& why)
-{
-    std::printf("SKIPPED test_mcap_foxglove: %s\n", why.c_str());
-    std::fflush(stdout);
-    std::exit(77);
-}
-
-std::string which(const std::string& program)
-{
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path ? path : "");
-    for (std::string d; std::getline(dirs, d, ':');) {
-        const fs::path p = fs::path(d) / program;
-        if (!d.empty() && access(p.c_str(), X_OK) == 0) return p.string();
-    }
-    return {};
-}
-
-// The packages installed in the build folder; the folder with check_mcap.mjs beside them.
-const std::string& node_dir()
-{
-    static const std::string dir = [] {
-        const std::string node = which("node"), npm = which("npm");
-        if (node.empty() || npm.empty()) skip("no node or npm on the PATH (tools/install-deps installs Debian's)");
-        const fs::path src = fs::path(UGV_SOURCE_DIR) / "tests/foxglove";
-        const fs::path dst = fs::path(UGV_BINARY_DIR) / "tests/foxglove-node";
-        fs::create_directories(dst);
-        const bool fresh = fs::exists(dst / "node_modules/@mcap/core") && fs::exists(dst / "package-lock.json") &&
-                           test::read_file(dst / "package-lock.json") == test::read_file(src / "package-lock.json");
-        for (const char* f : {"package.json", "package-lock.json", "check_mcap.mjs"})
-            fs::copy_file(src / f, dst / f, fs::copy_options::overwrite_existing);
-        if (!fresh) {
-            const std::string log = (dst / "npm-ci.log").string();
-            const int rc = test::run({npm, "ci", "--prefix", dst.string(), "--ignore-scripts", "--no-audit", "--no-fund"},
-                                     log, log, 180);
-            if (rc != 0) skip("npm ci failed (no npm registry?), see " + log);
-        }
-        return dst.string();
-    }();
-    return dir;
-}
 
 std::string expected_json(const std::map<std::string, int>& counts)
 {
@@ -91,14 +50,14 @@ std::string expected_json(const std::map<std::string, int>& counts)
 
 int check(const std::string& mcap, const std::string& expected, const std::string& out)
 {
-    return test::run({which("node"), node_dir() + "/check_mcap.mjs", mcap, expected}, out, out, 120);
+    return test::run({test::which("node"), test::node_dir("test_mcap_foxglove") + "/check_mcap.mjs", mcap, expected}, out, out, 120);
 }
 
 }  // namespace
 
 TEST_CASE("@mcap/core reads ugv-mcap's file: every topic, the log's counts, valid schemas, the grid")
 {
-    (void)node_dir();  // skips the whole test where node cannot be had
+    (void)test::node_dir("test_mcap_foxglove");  // skips the whole test where node cannot be had
     test::TempDir dir;
     const std::string log = dir / "run.lcm";
     auto counts = test::write_sample_log(log);

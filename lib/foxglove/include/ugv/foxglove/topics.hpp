@@ -39,8 +39,10 @@ struct TopicSpec
 };
 
 // The topics of a channel that carries type_name (a ugv type, as reflect names it): the raw
-// topic first, then the well-known ones. Empty for a type that is not a ugv type.
-std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view type_name);
+// topic first (unless with_raw is false: ugv-mcap --no-raw, ugv-foxglove's no_raw), then the
+// well-known ones. Empty for a type that is not a ugv type. ugv-mcap and ugv-foxglove both
+// take their topics from here.
+std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view type_name, bool with_raw = true);
 
 // The JSON Schema (schema encoding "jsonschema") of a topic's messages.
 std::string schema_of(const TopicSpec& spec);
