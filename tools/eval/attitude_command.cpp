@@ -30,6 +30,8 @@ AttitudeCommand::AttitudeCommand(CLI::App& app)
     sub_->add_option("log", log_, "LCM log with sim_truth_t and imu_t and/or pose_t")->required()->check(CLI::ExistingFile);
     sub_->add_option("--imu-channel", imu_channel_, "imu_t channel");
     sub_->add_option("--pose-channel", pose_channel_, "pose_t channel");
+    sub_->add_option("--pose-log", pose_log_, "take the pose from this log instead (e.g. ugv-pose --replay LOG --out LOG2)")
+        ->check(CLI::ExistingFile);
     sub_->add_option("--truth-channel", truth_channel_, "sim_truth_t channel");
     sub_->add_option("--turn-rate", turn_rate_dps_, "a true yaw rate above this is turning (deg/s)")
         ->check(CLI::Range(0.01, 90.0));
@@ -39,42 +41,50 @@ AttitudeCommand::AttitudeCommand(CLI::App& app)
 
 int AttitudeCommand::run() const
 {
-    lcm::LogFile log(log_, "r");
-    if (!log.good()) {
-        std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", log_.c_str());
-        return 2;
-    }
     std::vector<TruthSample> truth;
     std::vector<Stamped> imu, pose;
     uint64_t malformed = 0, pose_not_ok = 0;
     sim_truth_t t{};
     imu_t i{};
     pose_t p{};
-    while (const lcm::LogEvent* ev = log.readNextEvent()) {
-        const auto n = static_cast<std::size_t>(ev->datalen);
-        if (ev->channel == truth_channel_) {
-            if (!bus::decode_checked(ev->data, n, t)) {
-                ++malformed;
-                continue;
+    // With --pose-log the pose comes from there alone, the truth and the IMU from LOG.
+    for (int pass = 0; pass < 2; ++pass) {
+        const std::string& file = pass == 0 ? log_ : pose_log_;
+        if (file.empty()) continue;
+        lcm::LogFile log(file, "r");
+        if (!log.good()) {
+            std::fprintf(stderr, "ugv-eval: %s: not an LCM log\n", file.c_str());
+            return 2;
+        }
+        const bool pose_only = pass == 1;
+        const bool pose_here = pose_log_.empty() || pose_only;
+        while (const lcm::LogEvent* ev = log.readNextEvent()) {
+            const auto n = static_cast<std::size_t>(ev->datalen);
+            if (pose_only && ev->channel != pose_channel_) continue;
+            if (ev->channel == truth_channel_) {
+                if (!bus::decode_checked(ev->data, n, t)) {
+                    ++malformed;
+                    continue;
+                }
+                truth.push_back({t.utime, t.roll, t.pitch, t.yaw, std::hypot(t.velocity[0], t.velocity[1])});
+            } else if (ev->channel == imu_channel_) {
+                if (!bus::decode_checked(ev->data, n, i)) {
+                    ++malformed;
+                    continue;
+                }
+                if ((i.valid & imu_t::VALID_EULER) != 0) imu.push_back({i.utime, i.roll, i.pitch, i.yaw});
+            } else if (ev->channel == pose_channel_ && pose_here) {
+                if (!bus::decode_checked(ev->data, n, p)) {
+                    ++malformed;
+                    continue;
+                }
+                // Not yet initialised or failed: no attitude to judge.
+                if (p.status == pose_t::STATUS_INITIALIZING || p.status == pose_t::STATUS_FAULT) {
+                    ++pose_not_ok;
+                    continue;
+                }
+                pose.push_back({p.utime, p.roll, p.pitch, p.yaw});
             }
-            truth.push_back({t.utime, t.roll, t.pitch, t.yaw, std::hypot(t.velocity[0], t.velocity[1])});
-        } else if (ev->channel == imu_channel_) {
-            if (!bus::decode_checked(ev->data, n, i)) {
-                ++malformed;
-                continue;
-            }
-            if ((i.valid & imu_t::VALID_EULER) != 0) imu.push_back({i.utime, i.roll, i.pitch, i.yaw});
-        } else if (ev->channel == pose_channel_) {
-            if (!bus::decode_checked(ev->data, n, p)) {
-                ++malformed;
-                continue;
-            }
-            // Not yet initialised or failed: no attitude to judge.
-            if (p.status == pose_t::STATUS_INITIALIZING || p.status == pose_t::STATUS_FAULT) {
-                ++pose_not_ok;
-                continue;
-            }
-            pose.push_back({p.utime, p.roll, p.pitch, p.yaw});
         }
     }
     if (malformed > 0) std::fprintf(stderr, "ugv-eval: %llu malformed message(s) skipped\n", static_cast<unsigned long long>(malformed));

@@ -13,7 +13,7 @@
 //   ugv-eval coverage LOG [--ahead X0,X1] [--half-width W] [--turn DEG] [--window S] [--all]
 //       the known share of the area ahead of the vehicle in each map, summarised over the
 //       window after a turn (docs/simulator.md, "Two lasers").
-//   ugv-eval attitude LOG [--turn-rate DPS] [--standing-speed MPS]
+//   ugv-eval attitude LOG [--pose-log LOG2] [--turn-rate DPS] [--standing-speed MPS]
 //       roll/pitch/yaw error of the IMU's own output and of the pose against SIM_TRUTH,
 //       standing, straight and turning (attitude_command.hpp), one JSON line each.
 //   ugv-eval floor-study [--trials N] [--seed S] [--spread]

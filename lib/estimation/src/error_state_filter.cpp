@@ -21,7 +21,7 @@ void ErrorStateFilter::reset(const NominalState& state, const Covariance& covari
 bool ErrorStateFilter::healthy() const
 {
     return state_.position.allFinite() && state_.velocity.allFinite() && state_.attitude.coeffs().allFinite() &&
-           std::isfinite(state_.heading_offset) && P_.allFinite();
+           std::isfinite(state_.heading_offset) && state_.gyro_bias.allFinite() && P_.allFinite();
 }
 
 void ErrorStateFilter::predict(double dt, const Vector3d& rate_body, const Vector3d& specific_force_body,
@@ -36,17 +36,22 @@ void ErrorStateFilter::predict(double dt, const Vector3d& rate_body, const Vecto
 
     state_.position += state_.velocity * dt + 0.5 * accel * dt * dt;
     state_.velocity += accel * dt;
-    state_.attitude = (state_.attitude * geometry::quaternion_exp(rate_body * dt)).normalized();
+    state_.attitude =
+        (state_.attitude * geometry::quaternion_exp((rate_body - state_.gyro_bias) * dt)).normalized();
 
-    // Error dynamics: dp' = dv, dv' = -[R f]x dtheta + R n_a, dtheta' = -R n_g, db' = n_b.
-    // Only the non-identity blocks of F are formed; P = F P F^T + Q is computed blockwise.
+    // Error dynamics: dp' = dv, dv' = -[R f]x dtheta + R n_a, dtheta' = -R dbg - R n_g,
+    // db' = n_b, dbg' = n_bg. F is formed to second order in dt (the bias reaches the
+    // velocity through the attitude within the step).
     const Matrix3d fx = skew(f_world);
     const Matrix3d a_vt = -fx * dt;              // dv <- dtheta
     const Matrix3d a_pt = -0.5 * fx * dt * dt;   // dp <- dtheta
+    const Matrix3d a_tb = -r * dt;               // dtheta <- dbg
     Covariance F = Covariance::Identity();
     F.block<3, 3>(kP, kV) = Matrix3d::Identity() * dt;
     F.block<3, 3>(kP, kTheta) = a_pt;
     F.block<3, 3>(kV, kTheta) = a_vt;
+    F.block<3, 3>(kTheta, kGyroBias) = a_tb;
+    F.block<3, 3>(kV, kGyroBias) = 0.5 * a_vt * a_tb;
     Covariance next = F * P_ * F.transpose();
 
     // Q of white acceleration noise integrated exactly over the step; gyro and offset noise
@@ -55,12 +60,14 @@ void ErrorStateFilter::predict(double dt, const Vector3d& rate_body, const Vecto
     const double qa = noise.accel * noise.accel;
     const double qg = noise.gyro * noise.gyro;
     const double qb = noise.heading_offset * noise.heading_offset;
+    const double qbg = noise.gyro_bias * noise.gyro_bias;
     for (int i = 0; i < 3; ++i) {
         next(kP + i, kP + i) += qa * dt * dt * dt / 3.0;
         next(kP + i, kV + i) += qa * dt * dt / 2.0;
         next(kV + i, kP + i) += qa * dt * dt / 2.0;
         next(kV + i, kV + i) += qa * dt;
         next(kTheta + i, kTheta + i) += qg * dt;
+        next(kGyroBias + i, kGyroBias + i) += qbg * dt;
     }
     next(kOffset, kOffset) += qb * dt;
     P_ = 0.5 * (next + next.transpose());
@@ -100,6 +107,7 @@ void ErrorStateFilter::inject(const Eigen::Matrix<double, kDim, 1>& dx)
     state_.velocity += dx.segment<3>(kV);
     state_.attitude = (geometry::quaternion_exp(dx.segment<3>(kTheta)) * state_.attitude).normalized();
     state_.heading_offset = geometry::wrap_angle(state_.heading_offset + dx(kOffset));
+    state_.gyro_bias += dx.segment<3>(kGyroBias);
     // The reset Jacobian of a world-frame attitude error is the identity to first order.
 }
 
@@ -115,18 +123,22 @@ UpdateResult ErrorStateFilter::update_position(const Vector3d& antenna_enu, cons
 }
 
 UpdateResult ErrorStateFilter::update_velocity(const Vector3d& velocity_enu, const Matrix3d& cov,
+                                               const Vector3d& lever_body, const Vector3d& imu_rate_body,
                                                bool horizontal_only, double gate_chi2)
 {
-    if (horizontal_only) {
-        const Eigen::Vector2d residual = velocity_enu.head<2>() - state_.velocity.head<2>();
-        Eigen::Matrix<double, 2, kDim> H = Eigen::Matrix<double, 2, kDim>::Zero();
-        H(0, kV) = 1.0;
-        H(1, kV + 1) = 1.0;
-        return update<2>(residual, H, cov.topLeftCorner<2, 2>(), gate_chi2);
-    }
-    const Vector3d residual = velocity_enu - state_.velocity;
+    // v_antenna = v + R (w x l), w = imu_rate - bg. With R_true = exp([dtheta]x) R:
+    // d/d dtheta = -[R (w x l)]x, d/d dbg = R [l]x (since -(dbg x l) = l x dbg).
+    const Matrix3d r = state_.attitude.toRotationMatrix();
+    const Vector3d lever_velocity = r * (imu_rate_body - state_.gyro_bias).cross(lever_body);
+    const Vector3d residual = velocity_enu - (state_.velocity + lever_velocity);
     Eigen::Matrix<double, 3, kDim> H = Eigen::Matrix<double, 3, kDim>::Zero();
     H.block<3, 3>(0, kV) = Matrix3d::Identity();
+    H.block<3, 3>(0, kTheta) = -skew(lever_velocity);
+    H.block<3, 3>(0, kGyroBias) = r * skew(lever_body);
+    if (horizontal_only) {
+        const Eigen::Matrix<double, 2, kDim> h2 = H.topRows<2>();
+        return update<2>(residual.head<2>(), h2, cov.topLeftCorner<2, 2>(), gate_chi2);
+    }
     return update<3>(residual, H, cov, gate_chi2);
 }
 

@@ -20,6 +20,8 @@ namespace {
 // Longest single prediction step (s): keeps the linearised covariance step accurate when
 // inputs are sparse (an IMU outage, a slow log).
 constexpr double kMaxStepS = 0.05;
+// Shortest interval between the GPS velocities the along-track acceleration is taken from.
+constexpr int64_t kAccelBaselineUs = 1'000'000;
 
 void require(bool ok, const char* field)
 {
@@ -44,6 +46,12 @@ void EstimatorConfig::validate() const
     require(positive(process.accel) && positive(process.gyro) && positive(process.heading_offset),
             "process noise densities must be > 0");
     require(positive(imu_orientation_sigma_rad), "imu_orientation_sigma_rad must be > 0");
+    require(positive(process.gyro_bias), "process.gyro_bias must be > 0");
+    require(std::isfinite(imu_tilt_time_constant_s) && imu_tilt_time_constant_s >= 0.0,
+            "imu_tilt_time_constant_s must be >= 0");
+    require(std::isfinite(imu_tilt_accel_factor) && imu_tilt_accel_factor >= 0.0,
+            "imu_tilt_accel_factor must be >= 0");
+    require(positive(initial_gyro_bias_sigma_rps), "initial_gyro_bias_sigma_rps must be > 0");
     require(positive(gps_default_sigma_m) && positive(gps_min_sigma_m), "GPS sigmas must be > 0");
     require(positive(gps_velocity_sigma_mps), "gps_velocity_sigma_mps must be > 0");
     require(std::isfinite(course_min_speed_mps) && course_min_speed_mps > 0.0, "course_min_speed_mps must be > 0");
@@ -275,15 +283,10 @@ void PoseEstimator::predict_to(int64_t utime)
     // The IMU sample last applied is held over the interval (zero-order hold). Without a
     // recent one the vehicle keeps its velocity and attitude.
     const Matrix3d r = c_.filter.state().attitude.toRotationMatrix();
-    Vector3d rate = Vector3d::Zero();
+    const Vector3d rate = imu_rate();
     Vector3d force = r.transpose() * Vector3d(0.0, 0.0, ErrorStateFilter::kGravity);
-    if (c_.last_imu && c_.filter_utime - c_.last_imu->utime <= config_.imu_timeout_us) {
-        if (c_.last_imu->has_rate) {
-            rate = c_.last_imu->rate_rps;
-        }
-        if (c_.last_imu->has_accel) {
-            force = c_.last_imu->accel_mps2;
-        }
+    if (c_.last_imu && c_.filter_utime - c_.last_imu->utime <= config_.imu_timeout_us && c_.last_imu->has_accel) {
+        force = c_.last_imu->accel_mps2;
     }
     double remaining = static_cast<double>(utime - c_.filter_utime) * 1e-6;
     while (remaining > 0.0) {
@@ -322,7 +325,7 @@ void PoseEstimator::emit(int64_t utime)
     out.pitch = e.pitch;
     out.yaw = e.yaw;
     if (c_.last_imu && c_.last_imu->has_rate && !imu_stale) {
-        out.rotation_rate = c_.last_imu->rate_rps;
+        out.rotation_rate = c_.last_imu->rate_rps - s.gyro_bias;
     }
     out.position_covariance = P.block<3, 3>(ErrorStateFilter::kP, ErrorStateFilter::kP);
     out.velocity_covariance = P.block<3, 3>(ErrorStateFilter::kV, ErrorStateFilter::kV);
@@ -332,6 +335,8 @@ void PoseEstimator::emit(int64_t utime)
     out.error_covariance = P;
     out.heading_offset = s.heading_offset;
     out.heading_offset_sigma = std::sqrt(P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset));
+    out.gyro_bias = s.gyro_bias;
+    out.imu_tilt_sigma = c_.imu_tilt_sigma;
     out.heading_observed = c_.heading_observed;
     out.gps_outage = outage;
     out.datum = frame_->datum();
@@ -342,6 +347,42 @@ void PoseEstimator::emit(int64_t utime)
 double PoseEstimator::imu_sigma(const ImuSample& s) const
 {
     return std::isnan(s.orientation_sigma_rad) ? config_.imu_orientation_sigma_rad : s.orientation_sigma_rad;
+}
+
+Vector3d PoseEstimator::imu_rate() const
+{
+    // The filter removes its bias estimate from the rate: without a recent rate, handing it the
+    // bias makes the vehicle hold its attitude.
+    if (c_.last_imu && c_.last_imu->has_rate && c_.filter_utime - c_.last_imu->utime <= config_.imu_timeout_us) {
+        return c_.last_imu->rate_rps;
+    }
+    return c_.filter.state().gyro_bias;
+}
+
+Matrix3d PoseEstimator::imu_orientation_covariance(const ImuSample& s)
+{
+    // The vehicle's horizontal acceleration from what does not depend on the tilt: the
+    // along-track change of the GPS velocity and the centripetal yaw rate x speed. (The IMU's
+    // own specific force would be circular: it is what the IMU's filter mistakes for tilt.)
+    const double tau = config_.imu_tilt_time_constant_s;
+    const double sigma = imu_sigma(s);
+    const double dt =
+        c_.last_orientation ? static_cast<double>(s.utime - c_.last_orientation->utime) * 1e-6 : 0.0;
+    const double speed = c_.filter.state().velocity.head<2>().norm();
+    const double yaw_rate = s.has_rate ? s.rate_rps.z() - c_.filter.state().gyro_bias.z() : 0.0;
+    const double accel = std::hypot(c_.along_track_accel, yaw_rate * speed);
+    const double decay = (tau > 0.0 && dt > 0.0) ? std::exp(-dt / tau) : 0.0;
+    c_.accel_envelope = std::max(accel, c_.accel_envelope * decay);
+    const double false_tilt = config_.imu_tilt_accel_factor * c_.accel_envelope / ErrorStateFilter::kGravity;
+    double tilt_var = sigma * sigma + false_tilt * false_tilt;
+    c_.imu_tilt_sigma = std::sqrt(tilt_var);
+    if (tau > 0.0) {
+        // Samples closer than the time constant are not independent evidence.
+        tilt_var *= std::max(1.0, tau / std::max(dt, 1e-3));
+    }
+    // The residual is in the IMU's world frame (the true one turned by the heading offset about
+    // Up): equal east and north variances make the turn irrelevant.
+    return Eigen::Vector3d(tilt_var, tilt_var, sigma * sigma).asDiagonal();
 }
 
 Matrix3d PoseEstimator::fix_covariance(const GpsFix& f) const
@@ -356,13 +397,13 @@ Matrix3d PoseEstimator::fix_covariance(const GpsFix& f) const
 void PoseEstimator::apply_imu(const ImuSample& s)
 {
     if (s.has_orientation) {
-        c_.last_orientation = s;
         if (c_.initialized) {
-            const double sigma = imu_sigma(s);
-            const UpdateResult r = c_.filter.update_imu_orientation(
-                s.orientation.normalized(), Matrix3d::Identity() * sigma * sigma, config_.gate_orientation_chi2);
+            const Matrix3d cov = imu_orientation_covariance(s);
+            const UpdateResult r =
+                c_.filter.update_imu_orientation(s.orientation.normalized(), cov, config_.gate_orientation_chi2);
             ++(r.applied ? counters_.imu_used : counters_.imu_rejected);
         }
+        c_.last_orientation = s;
     }
     c_.last_imu = s;
 }
@@ -425,7 +466,12 @@ void PoseEstimator::initialize(const GpsFix& f, const Vector3d& antenna, const M
     P(ErrorStateFilter::kOffset, ErrorStateFilter::kOffset) = yaw_var + imu_var;
     P(ErrorStateFilter::kTheta + 2, ErrorStateFilter::kOffset) = -yaw_var;
     P(ErrorStateFilter::kOffset, ErrorStateFilter::kTheta + 2) = -yaw_var;
+    P.block<3, 3>(ErrorStateFilter::kGyroBias, ErrorStateFilter::kGyroBias) =
+        Matrix3d::Identity() * std::pow(config_.initial_gyro_bias_sigma_rps, 2);
     c_.filter.reset(s, P);
+    c_.last_velocity.reset();
+    c_.along_track_accel = 0.0;
+    c_.accel_envelope = 0.0;
 
     c_.initialized = true;
     c_.heading_observed = false;
@@ -467,9 +513,18 @@ void PoseEstimator::apply_velocity(const GpsVelocity& v)
     const bool horizontal_only = std::isnan(v.vertical_speed_mps);
     const Vector3d enu(speed * std::sin(v.track_rad), speed * std::cos(v.track_rad),
                        horizontal_only ? 0.0 : v.vertical_speed_mps);
-    const UpdateResult r =
-        c_.filter.update_velocity(enu, Matrix3d::Identity() * sv * sv, horizontal_only, config_.gate_velocity_chi2);
+    const UpdateResult r = c_.filter.update_velocity(enu, Matrix3d::Identity() * sv * sv, config_.gps_antenna_body_m,
+                                                     imu_rate(), horizontal_only, config_.gate_velocity_chi2);
     ++(r.applied ? counters_.velocity_used : counters_.velocity_rejected);
+    // The speed's change over at least kAccelBaselineS: over one 0.2 s interval the velocity's
+    // noise alone would read as 0.3 m/s^2.
+    if (!c_.last_velocity || v.utime < c_.last_velocity->utime) {
+        c_.last_velocity = v;
+    } else if (v.utime - c_.last_velocity->utime >= kAccelBaselineUs) {
+        c_.along_track_accel = (speed - c_.last_velocity->horizontal_speed_mps) /
+                               (static_cast<double>(v.utime - c_.last_velocity->utime) * 1e-6);
+        c_.last_velocity = v;
+    }
 }
 
 }  // namespace ugv::estimation

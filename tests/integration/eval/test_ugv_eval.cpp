@@ -249,6 +249,28 @@ TEST_CASE("ugv-eval attitude: the IMU's and the pose's errors against SIM_TRUTH,
           std::string::npos);
     CHECK(out.find("1 pose(s) initialising") != std::string::npos);
 
+    // --pose-log: the pose from a second log (a replay), the truth and the IMU from the first;
+    // the first log's own poses are not scored.
+    const std::string replayed = dir / "replayed.lcm";
+    {
+        lcm::LogFile log(replayed, "w");
+        for (int k = 1; k <= 200; ++k) {
+            const double t = k * 0.02;
+            if (std::abs(t - 1) < 0.15 || std::abs(t - 2) < 0.15) continue;
+            pose_t p{};
+            p.utime = kUtime + k * 20'000;
+            p.status = pose_t::STATUS_OK;
+            p.roll = truth_roll(t) + 0.4 * kDeg;
+            p.pitch = -0.02;
+            p.yaw = yaw_at(t);
+            test::write_event(log, p.utime, "POSE", p);
+        }
+    }
+    REQUIRE(eval(dir, {"attitude", path, "--pose-log", replayed}, out) == 0);
+    CHECK(line("IMU", "all").find("\"samples\": 171") != std::string::npos);
+    CHECK(line("POSE", "all").find("\"samples\": 170, \"roll_rms_deg\": 0.4000, \"roll_max_deg\": 0.4000") !=
+          std::string::npos);
+
     // A log without the truth cannot be scored.
     const std::string bare = dir / "bare.lcm";
     {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "ugv/geometry/rotation.hpp"
 
@@ -90,6 +91,8 @@ Run simulate(const Trajectory& trajectory, const Noise& noise, const Datum& datu
     const auto end = static_cast<int64_t>(duration_s * 1e6);
     // Merge the two sensor clocks; the GPS clock is offset by 3 ms so stamps rarely tie.
     int64_t next_imu = 0, next_gps = 3'000;
+    const double imu_dt = static_cast<double>(imu_period) * 1e-6;
+    std::optional<Eigen::Quaterniond> ahrs;  // the AHRS's attitude (true yaw, its own tilt)
     while (next_imu <= end || next_gps <= end) {
         if (next_imu <= next_gps) {
             const double t = static_cast<double>(next_imu) * 1e-6;
@@ -98,13 +101,30 @@ Run simulate(const Trajectory& trajectory, const Noise& noise, const Datum& datu
             s.utime = start_utime + next_imu;
             s.has_orientation = s.has_rate = s.has_accel = true;
             const Eigen::Quaterniond q = tr.attitude();
-            const Eigen::Quaterniond magnetic =
-                Eigen::Quaterniond(Eigen::AngleAxisd(noise.heading_offset_rad, Vector3d::UnitZ())) * q;
-            s.orientation = (geometry::quaternion_exp(gauss3(noise.imu_orientation_sigma_rad)) * magnetic).normalized();
-            s.orientation_sigma_rad = noise.imu_orientation_sigma_rad;
-            s.rate_rps = Vector3d(0.0, 0.0, tr.yaw_rate) + gauss3(noise.gyro_density * std::sqrt(noise.imu_hz));
+            s.rate_rps = Vector3d(0.0, 0.0, tr.yaw_rate) + noise.gyro_bias_rps +
+                         gauss3(noise.gyro_density * std::sqrt(noise.imu_hz));
             s.accel_mps2 = q.conjugate() * (tr.acceleration + Vector3d(0.0, 0.0, kGravity)) +
                            gauss3(noise.accel_density * std::sqrt(noise.imu_hz));
+            Eigen::Quaterniond attitude = q;
+            if (noise.ahrs_time_constant_s > 0.0) {
+                if (!ahrs) {
+                    ahrs = q;
+                } else {
+                    // Integrate the gyros, then pull the accelerometers' "up" toward Up.
+                    Eigen::Quaterniond a = (*ahrs * geometry::quaternion_exp(s.rate_rps * imu_dt)).normalized();
+                    const Vector3d up_seen = (a * s.accel_mps2).normalized();
+                    const Vector3d pull = up_seen.cross(Vector3d::UnitZ()) * (imu_dt / noise.ahrs_time_constant_s);
+                    a = (geometry::quaternion_exp(pull) * a).normalized();
+                    geometry::Euler e = geometry::euler_from_quaternion(a);
+                    e.yaw = tr.yaw;
+                    ahrs = geometry::quaternion_from_euler(e);
+                }
+                attitude = *ahrs;
+            }
+            const Eigen::Quaterniond magnetic =
+                Eigen::Quaterniond(Eigen::AngleAxisd(noise.heading_offset_rad, Vector3d::UnitZ())) * attitude;
+            s.orientation = (geometry::quaternion_exp(gauss3(noise.imu_orientation_sigma_rad)) * magnetic).normalized();
+            s.orientation_sigma_rad = noise.imu_orientation_sigma_rad;
             run.inputs.emplace_back(s);
             next_imu += imu_period;
         } else {

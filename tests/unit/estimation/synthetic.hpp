@@ -45,6 +45,12 @@ struct Noise
     double gyro_density = 0.005;   // rad/s/sqrt(Hz)
     double accel_density = 0.05;   // m/s^2/sqrt(Hz)
     double heading_offset_rad = 0.3;  // IMU yaw minus true yaw
+    Eigen::Vector3d gyro_bias_rps = Eigen::Vector3d::Zero();  // constant, added to every rate
+    // > 0: the IMU's orientation comes from an AHRS-like complementary filter (gyros plus a
+    // pull toward the accelerometers' "down" with this time constant), so it takes the
+    // vehicle's acceleration for tilt; its yaw is kept at true yaw + heading offset. 0: truth
+    // plus white noise.
+    double ahrs_time_constant_s = 0.0;
     double imu_hz = 50.0;
     double gps_hz = 5.0;
 };

@@ -64,6 +64,7 @@ TEST_CASE("velocity variance grows by accel_density^2 * t, yaw by gyro_density^2
     ProcessNoise n;
     n.accel = 0.2;
     n.gyro = 1e-7;
+    n.gyro_bias = 1e-12;
     for (int i = 0; i < 100; ++i) {
         f.predict(0.01, Vector3d::Zero(), kLevelForce, n);
     }
@@ -167,11 +168,52 @@ TEST_CASE("yaw update wraps across +-pi")
 TEST_CASE("horizontal-only velocity leaves the vertical alone; a NaN state reports unhealthy")
 {
     ErrorStateFilter f = make();
-    f.update_velocity(Vector3d(1.0, 2.0, 0.0), Matrix3d::Identity() * 1e-6, true, 1e9);
+    f.update_velocity(Vector3d(1.0, 2.0, 0.0), Matrix3d::Identity() * 1e-6, Vector3d::Zero(), Vector3d::Zero(), true,
+                      1e9);
     CHECK(f.state().velocity.x() == Approx(1.0).epsilon(1e-3));
     CHECK(f.state().velocity.y() == Approx(2.0).epsilon(1e-3));
     CHECK(f.covariance()(F::kV + 2, F::kV + 2) == Approx(0.01));
     CHECK(f.healthy());
     f.predict(0.01, Vector3d(NAN, 0, 0), kLevelForce, ProcessNoise{});
     CHECK_FALSE(f.healthy());
+}
+
+TEST_CASE("the lever arm in velocity: a vehicle turning in place moves its antenna by R (w x l)")
+{
+    // Facing north, turning left at 0.5 rad/s, antenna 2 m ahead: the antenna moves west at
+    // 1 m/s while the reference point stands.
+    ErrorStateFilter f = make();
+    NominalState s;
+    s.attitude = ugv::geometry::quaternion_from_euler({0.0, 0.0, M_PI / 2});
+    f.reset(s, f.covariance());
+    const Vector3d rate(0.0, 0.0, 0.5), lever(2.0, 0.0, 0.0);
+    const UpdateResult r =
+        f.update_velocity(Vector3d(-1.0, 0.0, 0.0), Matrix3d::Identity() * 1e-4, lever, rate, false, 16.27);
+    CHECK(r.applied);
+    CHECK(r.mahalanobis2 == Approx(0.0).margin(1e-12));
+    CHECK(f.state().velocity.norm() < 1e-9);
+    // Without the lever arm the same measurement would be read as the vehicle moving west.
+    ErrorStateFilter g = make();
+    g.reset(s, g.covariance());
+    g.update_velocity(Vector3d(-1.0, 0.0, 0.0), Matrix3d::Identity() * 1e-4, Vector3d::Zero(), rate, false, 1e9);
+    CHECK(g.state().velocity.x() < -0.9);
+}
+
+TEST_CASE("the gyro bias is taken off the rate, and its uncertainty grows the attitude's")
+{
+    ErrorStateFilter f;
+    F::Covariance P = F::Covariance::Identity() * 1e-6;
+    P.block<3, 3>(F::kGyroBias, F::kGyroBias) = Matrix3d::Identity() * 1e-4;
+    NominalState s;
+    s.gyro_bias = Vector3d(0.0, 0.0, 0.01);
+    f.reset(s, P);
+    ProcessNoise noise;
+    noise.gyro = 1e-9;
+    for (int i = 0; i < 100; ++i) {
+        f.predict(0.01, Vector3d(0.0, 0.0, 0.01), kLevelForce, noise);  // the rate is all bias
+    }
+    CHECK(std::fabs(ugv::geometry::euler_from_quaternion(f.state().attitude).yaw) < 1e-12);
+    // 1 s of an uncertain bias (sigma 0.01 rad/s): yaw variance 1e-6 + 1e-4 * 1^2.
+    CHECK(f.covariance()(F::kTheta + 2, F::kTheta + 2) == Approx(1.01e-4).epsilon(0.02));
+    CHECK(f.covariance()(F::kTheta + 2, F::kGyroBias + 2) == Approx(-1e-4).epsilon(0.02));
 }

@@ -79,8 +79,11 @@ TEST_CASE("straight line from rest: DEGRADED until moving, then the yaw and its 
     REQUIRE(early);
     CHECK(early->status == PoseStatus::degraded);
     CHECK_FALSE(early->heading_observed);
-    // Before the course is seen the IMU's magnetic yaw is all there is: off by the offset.
-    CHECK(std::fabs(ugv::geometry::wrap_angle(early->yaw - heading) - noise.heading_offset_rad) < 0.05);
+    // Before the course is seen the IMU's magnetic yaw is what the yaw starts from (off by the
+    // offset); the direction of the acceleration the GPS velocity sees moves it, within the
+    // yaw's own uncertainty.
+    const double early_error = ugv::geometry::wrap_angle(early->yaw - heading);
+    CHECK(std::fabs(early_error) < 3.0 * std::sqrt(early->orientation_covariance(2, 2)));
 
     const Score s = score(poses, t, run, 10.0, 40.0);
     CHECK(s.rms_horizontal_m < 0.2);  // GPS alone: 0.5 m per axis

@@ -2,13 +2,16 @@
 // buffering or input policy (those live in PoseEstimator).
 //
 // Nominal state: position p and velocity v of the body reference point in local ENU (m, m/s),
-// attitude q (body -> ENU), and the heading offset b of the IMU (rad): the IMU's magnetic
-// yaw is true yaw + b (magnetic declination plus mounting and compass error).
-// Error state (10): dp(3), dv(3), dtheta(3) (attitude error as a world-frame rotation vector,
-// R_true = exp([dtheta]x) R), db(1).
+// attitude q (body -> ENU), the heading offset b of the IMU (rad): the IMU's magnetic
+// yaw is true yaw + b (magnetic declination plus mounting and compass error), and the gyro
+// bias bg (body, rad/s): the IMU's rate is the true rate + bg.
+// Error state (13): dp(3), dv(3), dtheta(3) (attitude error as a world-frame rotation vector,
+// R_true = exp([dtheta]x) R), db(1), dbg(3).
 //
-// The IMU's rate and specific force drive the prediction (strapdown mechanisation with
-// gravity 9.80665 m/s^2 along -Up); measurements correct it. Every update is gated on its
+// The IMU's rate (less bg) and specific force drive the prediction (strapdown mechanisation
+// with gravity 9.80665 m/s^2 along -Up); measurements correct it. A tilt error dtheta makes
+// the specific force rotated into the world lean by g dtheta, which the GPS velocity sees:
+// that, not the IMU's own attitude output, is what holds roll and pitch. Every update is gated on its
 // Mahalanobis distance and uses the Joseph form so that P stays symmetric positive definite.
 #pragma once
 
@@ -23,6 +26,7 @@ struct NominalState
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, ENU
     Eigen::Quaterniond attitude = Eigen::Quaterniond::Identity();  // body -> ENU
     double heading_offset = 0.0;  // rad, IMU yaw minus true yaw
+    Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();  // rad/s, body: IMU rate minus true rate
 };
 
 // Continuous-time process noise densities.
@@ -31,6 +35,7 @@ struct ProcessNoise
     double accel = 0.1;           // m/s^2/sqrt(Hz): white noise on the specific force
     double gyro = 0.005;          // rad/s/sqrt(Hz): white noise on the body rate
     double heading_offset = 1e-4; // rad/sqrt(s): random walk of the IMU heading offset
+    double gyro_bias = 1e-5;      // rad/s/sqrt(s): random walk of each gyro's bias
 };
 
 // What an update did: the squared Mahalanobis distance of its innovation, and whether it
@@ -44,8 +49,8 @@ struct UpdateResult
 class ErrorStateFilter
 {
 public:
-    static constexpr int kDim = 10;
-    static constexpr int kP = 0, kV = 3, kTheta = 6, kOffset = 9;  // error-state offsets
+    static constexpr int kDim = 13;
+    static constexpr int kP = 0, kV = 3, kTheta = 6, kOffset = 9, kGyroBias = 10;  // error-state offsets
     using Covariance = Eigen::Matrix<double, kDim, kDim>;
     static constexpr double kGravity = 9.80665;  // m/s^2
 
@@ -57,8 +62,8 @@ public:
     // False once a non-finite number appears in the state or its covariance.
     bool healthy() const;
 
-    // Propagates by dt (s) with the body rate (rad/s) and specific force (m/s^2) held
-    // constant over the step.
+    // Propagates by dt (s) with the IMU's body rate (rad/s, the bias is removed here) and
+    // specific force (m/s^2) held constant over the step.
     void predict(double dt, const Eigen::Vector3d& rate_body, const Eigen::Vector3d& specific_force_body,
                  const ProcessNoise& noise);
 
@@ -66,8 +71,11 @@ public:
     // reference point (body frame, m).
     UpdateResult update_position(const Eigen::Vector3d& antenna_enu, const Eigen::Matrix3d& cov,
                                  const Eigen::Vector3d& lever_body, double gate_chi2);
-    // Velocity over ground (ENU, m/s). horizontal_only uses the east and north components.
+    // Velocity over ground of the GPS antenna (ENU, m/s), which sits at lever_body: the
+    // reference point's velocity plus R (w x lever), w the IMU's rate (rad/s, body) less the
+    // bias. horizontal_only uses the east and north components.
     UpdateResult update_velocity(const Eigen::Vector3d& velocity_enu, const Eigen::Matrix3d& cov,
+                                 const Eigen::Vector3d& lever_body, const Eigen::Vector3d& imu_rate_body,
                                  bool horizontal_only, double gate_chi2);
     // The IMU's orientation (body -> ENU with its magnetic yaw), cov in its world-frame
     // rotation vector (rad^2).

@@ -56,6 +56,15 @@ struct EstimatorConfig
 
     ProcessNoise process;
     double imu_orientation_sigma_rad = 0.035;   // when the sample does not carry one
+    // The IMU's roll and pitch come from its own filter, which takes the vehicle's acceleration
+    // for gravity: its tilt error is correlated over that filter's time constant and grows
+    // with the acceleration. Each sample's tilt variance is (sigma^2 + (accel_factor a / g)^2)
+    // x time_constant / (time since the last sample), a = the peak horizontal acceleration
+    // (GPS velocity and body rate) decaying with the time constant: one time constant of
+    // samples weighs as one independent measurement. 0 = samples independent, no inflation.
+    double imu_tilt_time_constant_s = 10.0;
+    double imu_tilt_accel_factor = 1.0;
+    double initial_gyro_bias_sigma_rps = 0.0087;  // 0.5 deg/s
     double gps_default_sigma_m = 5.0;           // when the fix does not carry sigmas
     double gps_min_sigma_m = 0.01;              // floor on reported sigmas
     double gps_velocity_sigma_mps = 0.1;        // 1-sigma per ENU axis
@@ -99,6 +108,8 @@ struct PoseEstimate
     ErrorStateFilter::Covariance error_covariance = ErrorStateFilter::Covariance::Zero();
     double heading_offset = 0.0;        // rad, IMU yaw minus true yaw
     double heading_offset_sigma = 0.0;  // rad
+    Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();  // rad/s, body
+    double imu_tilt_sigma = 0.0;  // rad, the last IMU tilt sample's sigma before the time-constant weighting
     bool heading_observed = false;      // GPS course has aligned the heading
     bool gps_outage = false;
     Datum datum;
@@ -193,6 +204,10 @@ private:
         std::optional<ImuSample> last_imu;
         std::optional<ImuSample> last_orientation;
         int64_t last_fix_used_utime = 0;
+        std::optional<GpsVelocity> last_velocity;  // the start of the acceleration's baseline
+        double along_track_accel = 0.0;  // m/s^2, from GPS velocities >= 1 s apart
+        double accel_envelope = 0.0;     // m/s^2, peak horizontal acceleration, decaying
+        double imu_tilt_sigma = 0.0;     // rad, of the last tilt sample (before weighting)
     };
     struct Applied
     {
@@ -214,6 +229,8 @@ private:
     void initialize(const GpsFix& f, const Eigen::Vector3d& antenna_enu, const Eigen::Matrix3d& cov);
     Eigen::Matrix3d fix_covariance(const GpsFix& f) const;
     double imu_sigma(const ImuSample& s) const;
+    Eigen::Vector3d imu_rate() const;
+    Eigen::Matrix3d imu_orientation_covariance(const ImuSample& s);
 
     EstimatorConfig config_;
     Core c_;
