@@ -42,8 +42,8 @@ if [ -z "$score_only" ]; then
     verdict scenario "$sim_rc" "ugv-sim world exit status $sim_rc"
 fi
 
-# The truth: the scenario's [laser] (the simulator writes it for ugv-nodscan into run/).
-truth=$STACK_OUT/run/calibration/nodscan.toml
+# The truth: the scenario's true [laser] mount (the simulator writes it into run/true-calibration/).
+truth=$STACK_OUT/run/true-calibration/nodscan.toml
 read_truth() { awk -F'[][,= ]+' -v k="$1" '$1 == k { print $2, $3, $4 }' "$truth"; }
 read -r _ _ true_z <<<"$(read_truth tilt_axis_xyz_m)"
 read -r true_roll true_pitch _ <<<"$(read_truth tilt_axis_rpy_deg)"
