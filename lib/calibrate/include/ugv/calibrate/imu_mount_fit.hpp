@@ -39,7 +39,8 @@ struct ImuMountFitConfig
 {
     double still_window_s = 1.0;            // still: over this window around a sample ...
     double still_rate_radps = 0.02;         // ... every rate below this
-    double still_accel_spread_mps2 = 0.15;  // ... and the specific force within this of its mean
+    double still_accel_spread_mps2 = 0.15;  // ... the specific force within this of its mean
+    double still_kinematic_mps2 = 0.05;     // ... and its mean less the unit's gravity below this
     double min_still_s = 3.0;               // still time needed, or there is no static period
     double straight_rate_radps = 0.02;      // an acceleration sample turns slower than this
     double min_accel_mps2 = 0.3;            // and accelerates at least this much
