@@ -216,7 +216,7 @@ stack_write_config() {
         [ -n "$top" ] && cat "$top"
         [ "$name" != "$base" ] && printf '%s' "${STACK_EXTRA[$base]:-}"
         printf '%s' "${STACK_EXTRA[$name]:-}"
-        [ -n "$calib" ] && cat "$calib"
+        if [ -n "$calib" ]; then cat "$calib"; fi
     } >"$cfg"
 }
 

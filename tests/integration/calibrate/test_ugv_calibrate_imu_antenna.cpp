@@ -18,6 +18,7 @@
 #include "ugv/gps_velocity_t.hpp"
 #include "ugv/imu_t.hpp"
 #include "ugv_test/encoded.hpp"
+#include "calibrate_run.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
@@ -88,28 +89,9 @@ void write_log(const std::string& path, const Plan& plan)
     }
 }
 
-struct Run
-{
-    int rc = -1;
-    std::string out, err;
-};
+using Run = test::CalibrateRun;
 
-Run calibrate(const test::TempDir& dir, std::vector<std::string> args)
-{
-    args.insert(args.begin(), test::bin("ugv-calibrate"));
-    Run r;
-    r.rc = test::run(args, dir / "out.txt", dir / "err.txt", 50);
-    r.out = test::read_file(dir / "out.txt");
-    r.err = test::read_file(dir / "err.txt");
-    return r;
-}
-
-double json_value(const std::string& json, const std::string& key)
-{
-    const auto at = json.find("\"" + key + "\": {\"value\": ");
-    REQUIRE(at != std::string::npos);
-    return std::stod(json.substr(at + key.size() + 13));
-}
+Run calibrate(const test::TempDir& dir, const std::vector<std::string>& args) { return test::run_calibrate(dir, args); }
 
 // Exit status 2 with one line on stderr that starts with `start`.
 void check_refused(const Run& r, const std::string& start)
@@ -134,9 +116,9 @@ TEST_CASE("ugv-calibrate imu and antenna on a drive with a left turn")
         const Run r = calibrate(dir, {"imu", log, "--json"});
         INFO(r.err << r.out);
         REQUIRE(r.rc == 0);
-        CHECK(std::abs(json_value(r.out, "roll_deg") - kTrueMountDeg.x()) < 0.05);
-        CHECK(std::abs(json_value(r.out, "pitch_deg") - kTrueMountDeg.y()) < 0.05);
-        CHECK(std::abs(json_value(r.out, "yaw_deg") - kTrueMountDeg.z()) < 0.1);
+        CHECK(std::abs(test::json_value(r.out, "roll_deg") - kTrueMountDeg.x()) < 0.05);
+        CHECK(std::abs(test::json_value(r.out, "pitch_deg") - kTrueMountDeg.y()) < 0.05);
+        CHECK(std::abs(test::json_value(r.out, "yaw_deg") - kTrueMountDeg.z()) < 0.1);
     }
     SECTION("imu: the ready mount_rpy_deg line, from a configured mounting")
     {
