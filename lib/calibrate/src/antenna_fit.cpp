@@ -128,8 +128,12 @@ AntennaFitResult fit_antenna(const std::vector<AntennaSample>& all, double initi
         }
         heading_model += lateral.value.tail<3>();
     }
+    double turning_speed = 0;
+    for (const AntennaSample& m : s)
+        if (std::abs(m.yaw_rate_radps) >= config.turn_rate_radps)
+            turning_speed += m.speed_mps / static_cast<double>(r.turning_samples);
     r.x.value = lateral.value[0];
-    r.x.sigma = lateral.sigma[0];
+    r.x.sigma = std::hypot(lateral.sigma[0], turning_speed * config.stamp_alignment_s);
     r.x.determined = r.x.sigma <= config.max_sigma_m;
     if (!r.x.determined) r.x.value = initial_x_m;
     r.lateral_rms_mps = lateral.rms;

@@ -65,6 +65,9 @@ struct AntennaFitConfig
     double min_turn_deg = 45.0;     // heading change while turning, or there are no turns
     double max_sigma_m = 0.05;      // a less certain coordinate is not determined
     double gate_sigmas = 5.0;       // residuals beyond this many RMS are outliers (refit once)
+    // How well GPS_VEL's and the IMU's stamps agree: a heading read this late in a turn is
+    // x's error times the speed, so x's sigma includes speed x this (its formal one leaves it out).
+    double stamp_alignment_s = 0.005;
 };
 
 struct AntennaFitResult
