@@ -15,6 +15,7 @@
 #   expect NAME ARGS...        ugv-expect ARGS (on the bench's URL) as a check
 #   expect_bg NAME ARGS...     the same in the background (several channels at once) ...
 #   expect_collect             ... and their checks, in the order they were started
+#   bench_world_log_flags ARGS...  --out DIR, --keep, --score DIR (BENCH_SCORE_ONLY), --help
 #   bench_flags OWN ARGS...    --device PATH (the real device OWN: lms gps imu servo), --lms
 #                              PATH, --gps PATH, --imu PATH, --servo TRANSPORT (real devices),
 #                              --seconds S (BENCH_SECONDS), --keep (keep the work folder), --help
@@ -27,6 +28,25 @@ BENCH_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source "$BENCH_DIR/../../tools/lib/stack.sh"
 BENCH_PASSED=0
 BENCH_FAILED=0
+
+# bench_world_log_flags ARGS...: the flags of a bench that runs a scenario on ugv-sim world and
+# calibrates or scores its log: --out DIR, --keep, --score DIR (only score the log an earlier
+# --out DIR kept: BENCH_SCORE_ONLY=DIR, else empty), --help. Exit 2 without the world simulator.
+bench_world_log_flags() {
+    BENCH_SCORE_ONLY=
+    while [ $# -gt 0 ]; do
+        case $1 in
+            --out) shift; export UGV_BENCH_OUT=$1 ;;
+            --keep) export UGV_BENCH_KEEP=1 ;;
+            --score) shift; BENCH_SCORE_ONLY=$(realpath "$1") || exit 2 ;;
+            -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+            *) echo "$(basename "$0"): unknown argument $1 (see --help)" >&2; exit 2 ;;
+        esac
+        shift
+    done
+    [ -n "$BENCH_SCORE_ONLY" ] && export UGV_BENCH_OUT=$BENCH_SCORE_ONLY
+    stack_has_world || { echo "$(basename "$0"): $STACK_BIN/ugv-sim has no world simulator" >&2; exit 2; }
+}
 
 bench_flags() {
     local own=$1; shift

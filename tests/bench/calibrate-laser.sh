@@ -12,19 +12,8 @@
 #                  1 cm, yaw reported as not determined;
 #   from-truth     from the true mount: the same estimate within 0.02 deg and 2 mm.
 source "$(dirname "$0")/bench.sh"
-score_only=
-while [ $# -gt 0 ]; do
-    case $1 in
-        --out) shift; export UGV_BENCH_OUT=$1 ;;
-        --keep) export UGV_BENCH_KEEP=1 ;;
-        --score) shift; score_only=$(realpath "$1") || exit 2 ;;
-        -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
-        *) echo "calibrate-laser.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
-    esac
-    shift
-done
-[ -n "$score_only" ] && export UGV_BENCH_OUT=$score_only
-stack_has_world || { echo "calibrate-laser.sh: $STACK_BIN/ugv-sim has no world simulator" >&2; exit 2; }
+bench_world_log_flags "$@"
+score_only=$BENCH_SCORE_ONLY
 scenario=$(realpath "$(dirname "$0")/../../tools/sim/scenarios/parking_lot.toml")
 
 bench_begin calibrate-laser 7933
@@ -42,8 +31,8 @@ if [ -z "$score_only" ]; then
     verdict scenario "$sim_rc" "ugv-sim world exit status $sim_rc"
 fi
 
-# The truth: the scenario's [laser] (the simulator writes it for ugv-nodscan into run/).
-truth=$STACK_OUT/run/calibration/nodscan.toml
+# The truth: the scenario's true [laser] mount (the simulator writes it into run/true-calibration/).
+truth=$STACK_OUT/run/true-calibration/nodscan.toml
 read_truth() { awk -F'[][,= ]+' -v k="$1" '$1 == k { print $2, $3, $4 }' "$truth"; }
 read -r _ _ true_z <<<"$(read_truth tilt_axis_xyz_m)"
 read -r true_roll true_pitch _ <<<"$(read_truth tilt_axis_rpy_deg)"

@@ -204,23 +204,23 @@ stack_instance_keys() {
 }
 
 # The config of one daemon: its device, the script's extra lines, then the simulator's
-# calibration for it (tables, so they go last; a servo's has top-level keys only and goes
-# before the extra lines, which may end with a table). An instance (lms-left) gets its
-# channel keys first and the extra lines of its base name (lms) before its own.
+# calibration for it (tables, so they go last; a servo's and the IMU's have top-level keys
+# only and go before the extra lines, which may end with a table). An instance (lms-left)
+# gets its channel keys first and the extra lines of its base name (lms) before its own.
 stack_write_config() {
-    local name=$1 cfg=$STACK_OUT/config/$1.toml calib=$STACK_OUT/run/calibration/$1.toml base=${1%%-*}
+    local name=$1 cfg=$STACK_OUT/config/$1.toml calib=$STACK_OUT/run/calibration/$1.toml base=${1%%-*} top=
+    [ -f "$calib" ] || calib=
+    case $base in servo|imu) top=$calib; calib= ;; esac
     {
         case $base in
             lms|gps|imu) printf 'device = "%s"\n' "${STACK_DEVICE[$name]:-}" ;;
             servo) printf 'transport = "%s"\n' "${STACK_DEVICE[$name]}" ;;
         esac
-        if [ "$name" != "$base" ]; then
-            stack_instance_keys "$base" "${name#*-}"
-            [ "$base" = servo ] && [ -f "$calib" ] && cat "$calib"
-            printf '%s' "${STACK_EXTRA[$base]:-}"
-        fi
+        [ "$name" != "$base" ] && stack_instance_keys "$base" "${name#*-}"
+        [ -n "$top" ] && cat "$top"
+        [ "$name" != "$base" ] && printf '%s' "${STACK_EXTRA[$base]:-}"
         printf '%s' "${STACK_EXTRA[$name]:-}"
-        [ -f "$calib" ] && { [ "$name" = "$base" ] || [ "$base" != servo ]; } && cat "$calib"
+        if [ -n "$calib" ]; then cat "$calib"; fi
     } >"$cfg"
 }
 

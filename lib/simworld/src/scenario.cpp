@@ -106,12 +106,20 @@ void read_path(runtime::Config& root, Scenario& s)
     }
 }
 
+// The true mount (KEY), then what ugv-nodscan is told (configured_KEY, default: the true one).
 void read_mount(runtime::Config& l, LaserSpec& laser)
 {
-    laser.mount.axis_xyz_m = mount_vec(l, "tilt_axis_xyz_m", {0.0, 0.0, 0.87}, 10, 1.0);
-    laser.mount.axis_rpy_rad = mount_vec(l, "tilt_axis_rpy_deg", {0, 0, 0}, 180, kDegToRad);
-    laser.mount.laser_xyz_m = mount_vec(l, "laser_xyz_m", {0, 0, 0}, 2, 1.0);
-    laser.mount.laser_rpy_rad = mount_vec(l, "laser_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    auto both = [&l](const std::string& key, Eigen::Vector3d& truth, Eigen::Vector3d& configured,
+                     const Eigen::Vector3d& def, double bound, double scale) {
+        truth = mount_vec(l, key, def, bound, scale);
+        configured = mount_vec(l, "configured_" + key, truth, bound, scale);
+    };
+    nodscan::MountGeometry& m = laser.mount;
+    nodscan::MountGeometry& c = laser.configured_mount;
+    both("tilt_axis_xyz_m", m.axis_xyz_m, c.axis_xyz_m, {0.0, 0.0, 0.87}, 10, 1.0);
+    both("tilt_axis_rpy_deg", m.axis_rpy_rad, c.axis_rpy_rad, {0, 0, 0}, 180, kDegToRad);
+    both("laser_xyz_m", m.laser_xyz_m, c.laser_xyz_m, {0, 0, 0}, 2, 1.0);
+    both("laser_rpy_deg", m.laser_rpy_rad, c.laser_rpy_rad, {0, 0, 0}, 180, kDegToRad);
     laser.range_noise_m = l.get_double("range_noise_m", 0.01, 0.0, 1.0);
 }
 
@@ -184,6 +192,7 @@ void read_sensors(runtime::Config& root, Scenario& s)
     s.gps.position_types = g.get_string("position_types", "NARROW_INT@0");
     s.gps.noise_scale = g.get_double("noise_scale", 1.0, 0.0, 100.0);
     s.gps.antenna_m = vec3(g, "antenna_m", {0.0, 0.0, 1.8}, 20);
+    s.gps.configured_antenna_m = vec3(g, "configured_antenna_m", s.gps.antenna_m, 20);
     s.gps.error_model = g.get_enum("error_model", "markov", {"markov", "white"});
     const bool markov = s.gps.error_model == "markov";
     for (auto [name, cls] : {std::pair{"rtk_fixed", &s.gps.rtk_fixed}, std::pair{"rtk_float", &s.gps.rtk_float},
@@ -207,6 +216,8 @@ void read_sensors(runtime::Config& root, Scenario& s)
     s.imu.rate_sigma_dps = i.get_double("rate_sigma_dps", 0.1, 0.0, 100.0);
     s.imu.accel_sigma_mps2 = i.get_double("accel_sigma_mps2", 0.02, 0.0, 100.0);
     s.imu.declination_deg = i.get_double("declination_deg", 0.0, -180, 180);
+    s.imu.mount_rpy_rad = mount_vec(i, "mount_rpy_deg", {0, 0, 0}, 180, kDegToRad);
+    s.imu.configured_mount_rpy_rad = mount_vec(i, "configured_mount_rpy_deg", s.imu.mount_rpy_rad, 180, kDegToRad);
 
     runtime::Config d = root.section("devices");
     s.devices.lms = d.get_bool("lms", true);

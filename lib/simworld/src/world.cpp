@@ -83,6 +83,7 @@ TruthState World::truth(int64_t utime) const
     s.velocity_mps = p.speed_mps * heading;
     s.velocity_mps.z() = (after.position_m.z() - before.position_m.z()) / (2 * h);
     s.accel_mps2 = p.accel_along_mps2 * heading + p.speed_mps * p.yaw_rate_radps * left;
+    s.yaw_rate_radps = p.yaw_rate_radps;
     // Body rates from the two attitudes (not Euler-angle rates): a gyro integrated from them
     // follows the true attitude, as the emulated IMU's filter needs.
     const Eigen::AngleAxisd turn(before.orientation.conjugate() * after.orientation);
@@ -113,6 +114,11 @@ Geodetic World::to_geodetic(const Eigen::Vector3d& enu) const
 Geodetic World::antenna_position(const TruthState& s) const
 {
     return to_geodetic(s.position_m + s.orientation * scenario_.gps.antenna_m);
+}
+
+Eigen::Vector3d World::antenna_velocity(const TruthState& s) const
+{
+    return s.velocity_mps + Eigen::Vector3d(0, 0, s.yaw_rate_radps).cross(s.orientation * scenario_.gps.antenna_m);
 }
 
 }  // namespace ugv::simworld

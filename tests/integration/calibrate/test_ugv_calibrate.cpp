@@ -17,6 +17,7 @@
 #include "ugv/nodscan/mount.hpp"
 #include "ugv/servo_state_t.hpp"
 #include "ugv_test/encoded.hpp"
+#include "calibrate_run.hpp"
 #include "ugv_test/process.hpp"
 
 using namespace ugv;
@@ -88,27 +89,12 @@ void write_log(const std::string& path, double seconds, bool servo = true, doubl
     }
 }
 
-struct Run
-{
-    int rc = -1;
-    std::string out, err;
-};
+using Run = test::CalibrateRun;
 
 Run calibrate(const test::TempDir& dir, std::vector<std::string> args)
 {
-    args.insert(args.begin(), {test::bin("ugv-calibrate"), "laser"});
-    Run r;
-    r.rc = test::run(args, dir / "out.txt", dir / "err.txt", 50);
-    r.out = test::read_file(dir / "out.txt");
-    r.err = test::read_file(dir / "err.txt");
-    return r;
-}
-
-double json_number(const std::string& json, const std::string& key)
-{
-    const auto at = json.find("\"" + key + "\": {\"value\": ");
-    REQUIRE(at != std::string::npos);
-    return std::stod(json.substr(at + key.size() + 13));
+    args.insert(args.begin(), "laser");
+    return test::run_calibrate(dir, args);
 }
 
 }  // namespace
@@ -125,9 +111,9 @@ TEST_CASE("ugv-calibrate laser finds the mount of a nodding laser over flat grou
         INFO(r.err);
         INFO(r.out);
         REQUIRE(r.rc == 0);
-        CHECK(std::abs(json_number(r.out, "roll_deg") - -1.3) < 0.05);
-        CHECK(std::abs(json_number(r.out, "pitch_deg") - 1.6) < 0.05);
-        CHECK(std::abs(json_number(r.out, "height_m") - 0.93) < 0.005);
+        CHECK(std::abs(test::json_value(r.out, "roll_deg") - -1.3) < 0.05);
+        CHECK(std::abs(test::json_value(r.out, "pitch_deg") - 1.6) < 0.05);
+        CHECK(std::abs(test::json_value(r.out, "height_m") - 0.93) < 0.005);
         CHECK(r.out.find("\"yaw_deg\": {\"value\": 0.00000, \"sigma\": null, \"initial\": 0.00000, \"determined\": false}") !=
               std::string::npos);
     }

@@ -145,3 +145,29 @@ TEST_CASE("the sensors' error models: ahrs and markov by default, each model's k
     CHECK(error("[gps]\nrtk_float_sigma_m = 0\n") == "s.toml: gps.rtk_float_sigma_m: 0 is out of range [0.001, 100]");
     CHECK(error("[gps]\nsingle_time_constant_s = \"long\"\n").find("s.toml: gps.single_time_constant_s: ") == 0);
 }
+
+TEST_CASE("the configured mounts default to the true ones, and a scenario can set them apart")
+{
+    Config same = Config::parse("[laser]\ntilt_axis_rpy_deg = [1.5, -1.2, 0]\n[gps]\nantenna_m = [0.3, -0.1, 1.7]\n"
+                                "[imu]\nmount_rpy_deg = [1, 2, 3]\n",
+                                "same.toml");
+    const Scenario s = parse_scenario(same);
+    CHECK(s.lasers[0].configured_mount.axis_rpy_rad == s.lasers[0].mount.axis_rpy_rad);
+    CHECK(s.lasers[0].mount.axis_rpy_rad.x() == Approx(1.5 * M_PI / 180));
+    CHECK(s.gps.configured_antenna_m == s.gps.antenna_m);
+    CHECK(s.imu.configured_mount_rpy_rad == s.imu.mount_rpy_rad);
+    CHECK(s.imu.mount_rpy_rad.z() == Approx(3 * M_PI / 180));
+
+    Config apart = Config::parse("[laser]\ntilt_axis_xyz_m = [0, 0, 0.95]\nconfigured_tilt_axis_xyz_m = [0, 0, 0.87]\n"
+                                 "[gps]\nantenna_m = [0.3, -0.1, 1.7]\nconfigured_antenna_m = [0, 0, 1.7]\n"
+                                 "[imu]\nmount_rpy_deg = [1, 2, 3]\nconfigured_mount_rpy_deg = [0, 0, 0]\n",
+                                 "apart.toml");
+    const Scenario t = parse_scenario(apart);
+    CHECK(t.lasers[0].mount.axis_xyz_m.z() == 0.95);
+    CHECK(t.lasers[0].configured_mount.axis_xyz_m.z() == 0.87);
+    CHECK(t.gps.antenna_m.x() == 0.3);
+    CHECK(t.gps.configured_antenna_m.x() == 0.0);
+    CHECK(t.imu.configured_mount_rpy_rad.isZero());
+    CHECK_THAT(error("[gps]\nconfigured_antenna_m = [0, 0]\n"), Catch::Contains("configured_antenna_m"));
+    CHECK_THAT(error("[imu]\nconfigured_mount_rpy_deg = [0, 0, 200]\n"), Catch::Contains("configured_mount_rpy_deg"));
+}

@@ -80,3 +80,19 @@ TEST_CASE("a ramp pitches the vehicle nose up, and the antenna's position is geo
     CHECK(g.longitude_deg > datum.longitude_deg);  // east of the datum
     CHECK(g.height_m == Approx(sc.datum_height_m + 0.5 + 1.8).margin(0.2));
 }
+
+TEST_CASE("the antenna's velocity in a turn is the reference point's plus yaw rate x lever arm")
+{
+    Scenario sc = flat_run();
+    sc.gps.antenna_m = {0.4, -0.1, 1.8};
+    const World w(sc, kStart);
+    // In the arc at 1 m/s on a 5 m radius (0.2 rad/s): in the body frame (v - w y, w x).
+    const TruthState t = w.truth(kStart + 10'000'000);
+    const Eigen::Vector3d body = t.orientation.conjugate() * w.antenna_velocity(t);
+    CHECK(body.x() == Approx(1.0 + 0.2 * 0.1).margin(1e-6));
+    CHECK(body.y() == Approx(0.2 * 0.4).margin(1e-6));
+    CHECK(body.z() == Approx(0.0).margin(1e-9));
+    // Straight: the reference point's.
+    const TruthState s = w.truth(kStart + 4'000'000);
+    CHECK((w.antenna_velocity(s) - s.velocity_mps).norm() < 1e-12);
+}

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "ugv/geometry/rotation.hpp"
+#include "ugv/microstrain_gx1/orientation.hpp"
 
 namespace ugv::sim::world {
 
@@ -180,13 +181,14 @@ GpsPort::GpsPort(const std::string& link_path, const simworld::World& world, int
         a.latitude_deg = g.latitude_deg;
         a.longitude_deg = g.longitude_deg;
         a.height_msl_m = g.height_m - undulation;
-        a.horizontal_speed_mps = std::hypot(t.velocity_mps.x(), t.velocity_mps.y());
+        const Eigen::Vector3d v = world.antenna_velocity(t);
+        a.horizontal_speed_mps = std::hypot(v.x(), v.y());
         // Track over ground; standing still, a receiver reports the last one: the heading.
-        const double yaw = a.horizontal_speed_mps > 0.01 ? std::atan2(t.velocity_mps.y(), t.velocity_mps.x()) : t.yaw_rad;
+        const double yaw = a.horizontal_speed_mps > 0.01 ? std::atan2(v.y(), v.x()) : t.yaw_rad;
         double track = geometry::track_from_enu_yaw(yaw) * kRadToDeg;
         if (track < 0) track += 360.0;
         a.track_deg = track;
-        a.vertical_speed_mps = t.velocity_mps.z();
+        a.vertical_speed_mps = v.z();
         return a;
     };
     receiver_ = std::make_unique<gps::GpsEmulator>(std::move(c), now_utime);
@@ -230,16 +232,24 @@ ImuPort::ImuPort(const std::string& link_path, const simworld::World& world, int
         // The filter's steps on the scenario's clock, so one seed gives one error history.
         c.ahrs_start_s = static_cast<double>(world.start_utime()) * 1e-6;
     }
-    // The unit's NED/FRD convention from the body's ENU/FLU truth: roll the same, pitch and
-    // yaw rate negated (FRD's Z is down), yaw clockwise from north plus the declination.
-    c.attitude = [&world, declination = spec.declination_deg * deg](double t_s) {
+    // The unit's NED/FRD convention from the body's ENU/FLU truth and the unit's true mounting
+    // (at the reference point): R_ned_frd = N R_enu_body R_body_sensor F, with N the ENU/NED
+    // swap and F = diag(1, -1, -1); yaw plus the declination. Aligned: roll the same, pitch and
+    // yaw rate negated, yaw clockwise from north.
+    const Eigen::Matrix3d mount = microstrain_gx1::rotation_from_euler(spec.mount_rpy_rad.x(), spec.mount_rpy_rad.y(),
+                                                                       spec.mount_rpy_rad.z());
+    c.attitude = [&world, mount, declination = spec.declination_deg * deg](double t_s) {
         const simworld::TruthState s = world.truth(std::llround(t_s * 1e6));
+        Eigen::Matrix3d swap;
+        swap << 0, 1, 0, 1, 0, 0, 0, 0, -1;
+        const Eigen::Matrix3d frd = Eigen::Vector3d(1, -1, -1).asDiagonal();
+        const Eigen::Vector3d euler = microstrain_gx1::euler_from_rotation(swap * s.orientation.toRotationMatrix() * mount * frd);
         imu::NedMotion m;
-        m.roll_rad = s.roll_rad;
-        m.pitch_rad = -s.pitch_rad;
-        m.yaw_rad = std::remainder(kPi / 2 - s.yaw_rad + declination, 2 * kPi);
-        m.rate_frd_radps = {s.rate_body_radps.x(), -s.rate_body_radps.y(), -s.rate_body_radps.z()};
-        m.accel_ned_mps2 = {s.accel_mps2.y(), s.accel_mps2.x(), -s.accel_mps2.z()};
+        m.roll_rad = euler.x();
+        m.pitch_rad = euler.y();
+        m.yaw_rad = std::remainder(euler.z() + declination, 2 * kPi);
+        m.rate_frd_radps = frd * (mount.transpose() * s.rate_body_radps);
+        m.accel_ned_mps2 = swap * s.accel_mps2;
         return m;
     };
     unit_ = std::make_unique<imu::Gx1Emulator>(std::move(c), static_cast<double>(now_utime) * 1e-6);

@@ -4,8 +4,9 @@
 //   ugv-sim world --print-scenario        (the default scenario, a starting point for others)
 //
 // The run folder gets the device links (lms, servo, gps, imu; with [[laser]] tables
-// lms-NAME and servo-NAME per laser), truth.hf, scenario.toml, calibration/{nodscan,pose}.toml
-// (nodscan-NAME.toml and servo-NAME.toml per named laser), and `ready` once every device is
+// lms-NAME and servo-NAME per laser), truth.hf, scenario.toml, calibration/{nodscan,pose,imu}.toml
+// (nodscan-NAME.toml and servo-NAME.toml per named laser; the mounts the daemons are told),
+// true-calibration/ (the same files with the true mounts), and `ready` once every device is
 // up. SIM_TRUTH (sim_truth_t, servo_angle of the first laser) goes out at 100 Hz. It ends after the scenario's path and hold time, after
 // --duration, or on SIGINT/SIGTERM.
 //

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ugv/calibrate/param_estimate.hpp"
 #include "ugv/nodscan/mount.hpp"
 
 namespace ugv::calibrate {
@@ -49,15 +50,6 @@ struct LaserFitConfig
 };
 
 enum LaserParam { kRoll, kPitch, kYaw, kHeight, kLaserParams };
-
-struct ParamEstimate
-{
-    double initial = 0;   // rad or m
-    double value = 0;     // the estimate (the initial value when not determined)
-    double sigma = 0;     // 1-sigma: the larger of the formal one and the spread over blocks;
-                          // infinite for one the data says nothing about
-    bool determined = false;
-};
 
 struct LaserFitResult
 {

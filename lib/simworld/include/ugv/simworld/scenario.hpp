@@ -39,6 +39,9 @@ struct LaserSpec
     // which names its devices in the run folder (lms-NAME, servo-NAME) and its calibration.
     std::string name;
     nodscan::MountGeometry mount{{0.0, 0.0, 0.87}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // as ugv-nodscan's [mount]
+    // What ugv-nodscan is told (the run folder's calibration/); the true mount unless the
+    // scenario's configured_* keys say otherwise, so a calibration can be checked against it.
+    nodscan::MountGeometry configured_mount = mount;
     double range_noise_m = 0.01;   // 1-sigma
     ServoSpec servo;
     // "" or "-NAME": appended to lms, servo and calibration/nodscan in the run folder.
@@ -59,7 +62,8 @@ struct GpsSpec
     std::string protocol = "novatel";          // novatel | nmea
     std::string position_types = "NARROW_INT@0";  // the receiver's solution over time
     double noise_scale = 1.0;                  // x the position type's sigma
-    Eigen::Vector3d antenna_m{0.0, 0.0, 1.8};  // body frame
+    Eigen::Vector3d antenna_m{0.0, 0.0, 1.8};  // body frame, true
+    Eigen::Vector3d configured_antenna_m = antenna_m;  // what ugv-pose is told (gps_antenna_m)
     // "markov": each class's error a first-order Gauss-Markov process (below); "white": an
     // independent draw per fix with the fixed sigmas of the receiver emulator.
     std::string error_model = "markov";
@@ -81,6 +85,10 @@ struct ImuSpec
     double rate_sigma_dps = 0.1;
     double accel_sigma_mps2 = 0.02;
     double declination_deg = 0.0;   // magnetic yaw = true yaw + this (the filter estimates it)
+    // The unit's FLU axes in the body frame (ZYX roll, pitch, yaw, rad), as ugv-imu's
+    // mount_rpy_deg: the true mounting, and the one ugv-imu is told.
+    Eigen::Vector3d mount_rpy_rad = Eigen::Vector3d::Zero();
+    Eigen::Vector3d configured_mount_rpy_rad = mount_rpy_rad;
 };
 
 struct DeviceSet

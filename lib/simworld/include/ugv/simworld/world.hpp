@@ -24,6 +24,7 @@ struct TruthState
     Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body -> ENU
     double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;  // Rz(yaw) Ry(pitch) Rx(roll); pitch + = nose down
     Eigen::Vector3d rate_body_radps = Eigen::Vector3d::Zero();
+    double yaw_rate_radps = 0;  // the path's turn rate (ENU, counter-clockwise positive)
 };
 
 struct Geodetic
@@ -42,8 +43,11 @@ public:
     // within max_range_m.
     double beam_range_m(const TruthState& state, double tilt_rad, double beam_angle_rad, double max_range_m,
                         std::size_t laser = 0) const;
-    // The GPS antenna's position and the vehicle's ENU velocity at the antenna.
+    // The GPS antenna's position (the scenario's true antenna_m).
     Geodetic antenna_position(const TruthState& state) const;
+    // Its ENU velocity: the reference point's plus the turn's (yaw rate x lever arm). The roll
+    // and pitch rates are left out: on the raster terrain they are its staircase, not motion.
+    Eigen::Vector3d antenna_velocity(const TruthState& state) const;
     Geodetic to_geodetic(const Eigen::Vector3d& enu_m) const;
 
     const HeightField& field() const { return field_; }
