@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,31 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
+
+// GCC/Clang vector extensions for the local ground's windows (what each lane computes is
+// the scalar expression's IEEE result, so the values do not depend on the vectors).
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+using D2 = double __attribute__((vector_size(16)));
+using L2 = int64_t __attribute__((vector_size(16)));
+
+F4 load4(const float* p)
+{
+    F4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+I4 load4(const int32_t* p)
+{
+    I4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
+F4 nan4() { return F4{kNaN, kNaN, kNaN, kNaN}; }
+D2 low2(F4 v) { return D2{v[0], v[1]}; }
+D2 high2(F4 v) { return D2{v[2], v[3]}; }
+D2 abs2(D2 v) { return (D2)((L2)v & L2{INT64_MAX, INT64_MAX}); }
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
@@ -42,17 +68,18 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
     return static_cast<std::size_t>(c);
 }
 
-// The value of rank k (from 0) among the finite v[0, n): what std::nth_element would put
-// at k. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
+// The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
+// marks a hole): what std::nth_element would put at k were the holes left out. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
 // found from guess in steps that grow from `step`, then narrowed at the level the counts
 // point to until it holds few values; those are gathered and the one of rank k among
 // them picked by insertion sort (the first of equal values in v's order, as a running
 // minimum would). buf holds n values.
-float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step, float* __restrict buf)
+float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, float step,
+                  float* __restrict buf)
 {
     constexpr std::size_t kFew = 12;
     float lo = -kInf, hi = kInf;
-    std::size_t below_lo = 0, below_hi = n;
+    std::size_t below_lo = 0, below_hi = finite;
     float t = guess;
     for (int iter = 0; iter < 64 && below_hi - below_lo > kFew; ++iter) {
         const std::size_t c = count_below(v, n, t);
@@ -83,7 +110,9 @@ float select_rank(const float* v, std::size_t n, std::size_t k, float guess, flo
     }
     const std::size_t r = k - below_lo;
     if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
-        std::vector<float> copy(v, v + n);
+        std::vector<float> copy;
+        for (std::size_t u = 0; u < n; ++u)
+            if (!std::isnan(v[u])) copy.push_back(v[u]);
         std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
         return copy[k];
     }
@@ -225,18 +254,21 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
     known_d_.resize(n);
-    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half, kNaN);
+    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half + 4, kNaN);  // + 4: a window row's last vector
     for (std::size_t k = 0; k < n; ++k) known_d_[k] = known_[k] ? 1.0 : 0.0;
     for (int i = 0; i < nx; ++i)
         for (std::size_t j = 0; j < w; ++j)
             if (known_[i * w + j]) parity_means_[((j & 1) * nx + i) * half + j / 2] = g.mean_z_m[i * w + j];
-    const std::size_t max_points = static_cast<std::size_t>(h + 1) * static_cast<std::size_t>(h + 1);
+    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
+    const std::size_t row_vectors = (static_cast<std::size_t>(h) + 4) / 4;
+    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
     win_v_.resize(max_points);
-    win_p_.resize(max_points);
-    win_q_.resize(max_points);
     win_sel_.resize(max_points);
-    win_off_.resize(max_points);
-    win_idx_.resize(max_points);
+    win_q_.resize(4 * row_vectors);
+    lane_known_.resize(4 * row_vectors);
+    lane_q_.resize(2 * row_vectors);
+    lane_z_.resize(2 * row_vectors);
+    lane_pz_.resize(2 * row_vectors);
     column_sums_.resize(3 * w);
     double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -268,80 +300,109 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             if (m.s0 < 3) continue;
             const float zc = g.mean_z_m[static_cast<std::size_t>(i) * w + j];
             const float zref = std::isnan(zc) ? 0.0f : zc;
-            // The window's known points, relative to zref.
-            std::size_t count = 0;
-            const int nq = (qhi - qlo) / 2 + 1;
-            for (int p = plo; p <= phi; p += 2) {
-                const float* row = &parity_means_[((qlo & 1) * nx + p) * half + qlo / 2];
-                const float fp = static_cast<float>(p - i);
-                for (int t = 0; t < nq; ++t) {
-                    const float v = row[t] - zref;
-                    win_v_[count] = v;
-                    win_p_[count] = fp;
-                    win_q_[count] = static_cast<float>(qlo + 2 * t - j);
-                    count += std::isnan(v) ? 0 : 1;
+            // The window's points relative to zref: nr rows of nv vectors of 4 (the row's nq
+            // points, then NaN; NaN also where unknown). count of them are known (the
+            // geometry's s0).
+            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1, nv = (nq + 3) / 4;
+            const std::size_t count = static_cast<std::size_t>(m.s0);
+            float* __restrict v = win_v_.data();
+            float* __restrict fq = win_q_.data();
+            for (int t = 0; t < 4 * nv; ++t) {
+                fq[t] = t < nq ? static_cast<float>(qlo + 2 * t - j) : 0.0f;
+                lane_known_[static_cast<std::size_t>(t)] = t < nq ? -1 : 0;
+            }
+            const F4 zr = {zref, zref, zref, zref};
+            for (int r = 0; r < nr; ++r) {
+                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
+                for (int c = 0; c < nv; ++c) {
+                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
+                    const F4 x = load4(row + 4 * c) - zr;
+                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, (F4)(((I4)x & in) | ((I4)nan4() & ~in)));
                 }
             }
-            // Two accumulators each, in registers (the sums are exact, so their order does not
-            // matter).
-            double sz0 = 0, sz1 = 0, spz0 = 0, spz1 = 0, sqz0 = 0, sqz1 = 0;
-            std::size_t e = 0;
-            for (; e + 1 < count; e += 2) {
-                const double v0 = win_v_[e], v1 = win_v_[e + 1];
-                sz0 += v0;
-                sz1 += v1;
-                spz0 += win_p_[e] * v0;
-                spz1 += win_p_[e + 1] * v1;
-                sqz0 += win_q_[e] * v0;
-                sqz1 += win_q_[e + 1] * v1;
+            // The heights' moments, per lane of the window's columns, then across them. The sums
+            // are exact (floats times small integers, in double), so their order does not
+            // matter; an unknown point adds +0 to a sum that started at +0.
+            D2* __restrict az = lane_z_.data();
+            D2* __restrict apz = lane_pz_.data();
+            D2* __restrict dq = lane_q_.data();
+            for (int c = 0; c < nv; ++c) {
+                const F4 q = load4(fq + 4 * c);
+                dq[2 * c] = low2(q);
+                dq[2 * c + 1] = high2(q);
+                az[2 * c] = az[2 * c + 1] = apz[2 * c] = apz[2 * c + 1] = D2{0.0, 0.0};
             }
-            if (e < count) {
-                const double v = win_v_[e];
-                sz0 += v;
-                spz0 += win_p_[e] * v;
-                sqz0 += win_q_[e] * v;
+            for (int r = 0; r < nr; ++r) {
+                const double p = plo + 2 * r - i;
+                const D2 fp = {p, p};
+                for (int c = 0; c < nv; ++c) {
+                    const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
+                    const F4 xz = (F4)((I4)x & (x == x));
+                    const D2 lo = low2(xz), hi = high2(xz);
+                    az[2 * c] += lo;
+                    az[2 * c + 1] += hi;
+                    apz[2 * c] += fp * lo;
+                    apz[2 * c + 1] += fp * hi;
+                }
             }
-            m.sz = sz0 + sz1;
-            m.spz = spz0 + spz1;
-            m.sqz = sqz0 + sqz1;
+            for (int e = 0; e < 2 * nv; ++e) {
+                const D2 qz = dq[e] * az[e];
+                m.sz += az[e][0] + az[e][1];
+                m.spz += apz[e][0] + apz[e][1];
+                m.sqz += qz[0] + qz[1];
+            }
             const PlaneFit first = plane_from_moments(m, nullptr);
-            // The second plane: without the points more than band off the first. The test in
-            // a pass that vectorises, then the few points off it subtracted in order.
-            std::size_t outliers = 0;
+            // The second plane: without the points more than band off the first (unknown ones
+            // compare false). Whether any is off, tested in vectors; the few windows with one
+            // then subtract those points (exact sums: in any order).
             {
                 const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                const float* __restrict vv = win_v_.data();
-                const float* __restrict vp = win_p_.data();
-                const float* __restrict vq = win_q_.data();
-                uint8_t* __restrict off = win_off_.data();
-                for (std::size_t u = 0; u < count; ++u) {
-                    const double p = vp[u], q = vq[u], v = vv[u];
-                    off[u] = std::abs(v - (fa + fgp * p + fgq * q)) > band ? 1 : 0;
+                const D2 band2 = {band, band}, gq2 = {fgq, fgq};
+                for (int e = 0; e < 2 * nv; ++e) apz[e] = gq2 * dq[e];  // reused: fgq q
+                L2 any = {0, 0};
+                for (int r = 0; r < nr; ++r) {
+                    const double p = static_cast<float>(plo + 2 * r - i), cr = fa + fgp * p;
+                    const D2 cr2 = {cr, cr};
+                    for (int c = 0; c < nv; ++c) {
+                        const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
+                        any |= abs2(low2(x) - (cr2 + apz[2 * c])) > band2;
+                        any |= abs2(high2(x) - (cr2 + apz[2 * c + 1])) > band2;
+                    }
                 }
-                for (std::size_t u = 0; u < count; ++u) {
-                    win_idx_[outliers] = static_cast<uint32_t>(u);
-                    outliers += off[u];
+                if (any[0] | any[1]) {
+                    for (int r = 0; r < nr; ++r)
+                        for (int t = 0; t < nq; ++t) {
+                            const double p = static_cast<float>(plo + 2 * r - i), q = fq[t];
+                            const double x = v[(static_cast<std::size_t>(r) * nv) * 4 + t];
+                            if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
+                            m.s0 -= 1;
+                            m.sp -= p;
+                            m.sq -= q;
+                            m.spp -= p * p;
+                            m.sqq -= q * q;
+                            m.spq -= p * q;
+                            m.sz -= x;
+                            m.spz -= p * x;
+                            m.sqz -= q * x;
+                        }
                 }
-            }
-            for (std::size_t o = 0; o < outliers; ++o) {
-                const std::size_t u = win_idx_[o];
-                const double p = win_p_[u], q = win_q_[u], v = win_v_[u];
-                m.s0 -= 1;
-                m.sp -= p;
-                m.sq -= q;
-                m.spp -= p * p;
-                m.sqq -= q * q;
-                m.spq -= p * q;
-                m.sz -= v;
-                m.spz -= p * v;
-                m.sqz -= q * v;
             }
             const PlaneFit fit = plane_from_moments(m, &first);
-            float* __restrict lv = win_v_.data();
-            const float* __restrict lp = win_p_.data();
-            const float* __restrict lq = win_q_.data();
-            for (std::size_t u = 0; u < count; ++u) lv[u] += zref - (fit.gp * lp[u] + fit.gq * lq[u]);
-            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
+            // Levelled: each point less the plane's slope (unknown points stay NaN).
+            {
+                const F4 gq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
+                for (int r = 0; r < nr; ++r) {
+                    const float gp = fit.gp * static_cast<float>(plo + 2 * r - i);
+                    const F4 gp4 = {gp, gp, gp, gp};
+                    for (int c = 0; c < nv; ++c) {
+                        float* at = v + (static_cast<std::size_t>(r) * nv + c) * 4;
+                        store4(at, load4(at) + (zr - (gp4 + gq4 * load4(fq + 4 * c))));
+                    }
+                }
+            }
+            const std::size_t points = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv) * 4;
+            lattice_[static_cast<std::size_t>(a) * ly + b] =
+                select_rank(v, points, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
