@@ -167,12 +167,27 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
 // (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
 // One column offset d of the slope's row pass: the row's weights w, heights z and obstacle
 // flags o, shifted by d, added into the five row sums and the obstacle count.
+template <bool kFirst>
 [[gnu::noinline]] void add_row_tap(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo,
                  float* __restrict rw, float* __restrict rwq, float* __restrict rwqq, float* __restrict rwz,
                  float* __restrict rwzq, float* __restrict ro, int d, int ny)
 {
     const float fd = static_cast<float>(d);
     const int from = std::max(0, -d), to = std::max(0, ny - std::max(0, d));
+    if (kFirst) {  // the sums start at +0 (0 + x below), so that no pass clears them first
+        for (int j = 0; j < std::min(from, ny); ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
+        for (int j = std::max(to, std::min(from, ny)); j < ny; ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
+        for (int j = from; j < to; ++j) {
+            const float wv = lw[j + d], zv = lz[j + d] * wv;
+            rw[j] = 0.0f + wv;
+            rwq[j] = 0.0f + fd * wv;
+            rwqq[j] = 0.0f + fd * fd * wv;
+            rwz[j] = 0.0f + zv;
+            rwzq[j] = 0.0f + fd * zv;
+            ro[j] = 0.0f + lo[j + d];
+        }
+        return;
+    }
     for (int j = from; j < to; ++j) {
         const float wv = lw[j + d], zv = lz[j + d] * wv;
         rw[j] += wv;
@@ -185,6 +200,7 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
 }
 
 // One row offset fd of the column pass: a row's sums added into the window's moments.
+template <bool kFirst>
 [[gnu::noinline]] void add_column_tap(const float* __restrict rw, const float* __restrict rwq,
                                       const float* __restrict rwqq, const float* __restrict rwz,
                                       const float* __restrict rwzq, const float* __restrict ro, float* __restrict s0,
@@ -193,6 +209,21 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
                                       float* __restrict szp, float* __restrict szq, float* __restrict so, float fd,
                                       std::size_t w)
 {
+    if (kFirst) {  // the sums start at +0: 0 + x, so that no pass clears them first
+        for (std::size_t j = 0; j < w; ++j) {
+            s0[j] = 0.0f + rw[j];
+            sp[j] = 0.0f + fd * rw[j];
+            spp[j] = 0.0f + fd * fd * rw[j];
+            sq[j] = 0.0f + rwq[j];
+            sqq[j] = 0.0f + rwqq[j];
+            spq[j] = 0.0f + fd * rwq[j];
+            sz[j] = 0.0f + rwz[j];
+            szp[j] = 0.0f + fd * rwz[j];
+            szq[j] = 0.0f + rwzq[j];
+            so[j] = 0.0f + ro[j];
+        }
+        return;
+    }
     for (std::size_t j = 0; j < w; ++j) {
         s0[j] += rw[j];
         sp[j] += fd * rw[j];
@@ -538,7 +569,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     line_z_.resize(w);
     line_o_.resize(w);
     auto row_pass = [&](int i) {
-        std::fill_n(rows(0, i), kRowSums * w, 0.0f);
         std::fill(line_w_.begin(), line_w_.end(), 0.0f);
         std::fill(line_z_.begin(), line_z_.end(), 0.0f);
         std::fill(line_o_.begin(), line_o_.end(), 0.0f);
@@ -553,7 +583,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             line_z_[j] = g.mean_z_m[k] - z0;
         }
         for (int d = -hp; d <= hp; ++d)
-            add_row_tap(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
+            (d == -hp ? add_row_tap<true> : add_row_tap<false>)(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
                         rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
     };
     int rows_done = 0;
@@ -561,12 +591,12 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     for (int i = 0; i < nx; ++i) {
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
-        moments_.assign(w * 10, 0.0f);
+        moments_.resize(w * 10);
         float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];
         float *sqq = &moments_[4 * w], *spq = &moments_[5 * w], *sz = &moments_[6 * w], *szp = &moments_[7 * w];
         float *szq = &moments_[8 * w], *so = &moments_[9 * w];
         for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
-            add_column_tap(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
+            (p == std::max(0, i - hp) ? add_column_tap<true> : add_column_tap<false>)(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
                            sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
