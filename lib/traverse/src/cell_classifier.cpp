@@ -102,17 +102,27 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
             step *= 2.0f;
         }
     }
-    // The values in [lo, hi), in v's order; rank k - below_lo among them.
-    std::size_t m = 0;
-    for (std::size_t u = 0; u < n; ++u) {
+    // The values in [lo, hi), in v's order; rank k - below_lo among them. Four at a time
+    // tested, and the few fours that hold one gathered.
+    std::size_t m = 0, u = 0;
+    const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
+    for (; u + 4 <= n; u += 4) {
+        const I4 in = (load4(v + u) >= lo4) & (load4(v + u) < hi4);
+        if ((in[0] | in[1] | in[2] | in[3]) == 0) continue;
+        for (std::size_t e = u; e < u + 4; ++e) {
+            buf[m] = v[e];
+            m += v[e] >= lo && v[e] < hi ? 1 : 0;
+        }
+    }
+    for (; u < n; ++u) {
         buf[m] = v[u];
         m += v[u] >= lo && v[u] < hi ? 1 : 0;
     }
     const std::size_t r = k - below_lo;
     if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
         std::vector<float> copy;
-        for (std::size_t u = 0; u < n; ++u)
-            if (!std::isnan(v[u])) copy.push_back(v[u]);
+        for (std::size_t e = 0; e < n; ++e)
+            if (!std::isnan(v[e])) copy.push_back(v[e]);
         std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
         return copy[k];
     }
