@@ -69,7 +69,8 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 }
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
-// marks a hole): what std::nth_element would put at k were the holes left out. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
+// marks a hole): what std::nth_element would put at k were the holes left out. A bracket
+// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
 // found from guess in steps that grow from `step`, then narrowed at the level the counts
 // point to until it holds few values; those are gathered and the one of rank k among
 // them picked by insertion sort (the first of equal values in v's order, as a running
@@ -284,9 +285,10 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // local_ground_reference, lattice point by lattice point, is the specification. Here the
     // window's geometry (the moments of its known cells' offsets) comes from sums along the
     // columns of a lattice row's window rows, then along the window's columns; the heights'
-    // moments from the window's points in a buffer (the same floats as the reference's,
-    // summed in double: integer offsets times floats, exact in any order); the second
-    // plane's by subtracting the points off the first; the percentile by counting.
+    // moments from the window's points in rows of vectors of 4, unknown points as NaN (the
+    // same floats as the reference's, summed in double: integer offsets times floats, exact
+    // in any order); the second plane's by subtracting the points off the first; the
+    // percentile by counting.
     const int nx = g.nx, ny = g.ny, h = ground_half_width(radius_m, g.resolution_m);
     const int lx = (nx - 1) / kGroundStride + 1, ly = (ny - 1) / kGroundStride + 1;
     const std::size_t n = g.cells(), w = static_cast<std::size_t>(ny), half = (w + 1) / 2;
@@ -593,8 +595,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             line_z_[j] = g.mean_z_m[k] - z0;
         }
         for (int d = -hp; d <= hp; ++d)
-            (d == -hp ? add_row_tap<true> : add_row_tap<false>)(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
-                        rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
+            (d == -hp ? add_row_tap<true> : add_row_tap<false>)(line_w_.data(), line_z_.data(), line_o_.data(),
+                                                                 rows(W, i), rows(WQ, i), rows(WQQ, i), rows(WZ, i),
+                                                                 rows(WZQ, i), rows(OBST, i), d, ny);
     };
     int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
@@ -606,8 +609,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         float *sqq = &moments_[4 * w], *spq = &moments_[5 * w], *sz = &moments_[6 * w], *szp = &moments_[7 * w];
         float *szq = &moments_[8 * w], *so = &moments_[9 * w];
         for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
-            (p == std::max(0, i - hp) ? add_column_tap<true> : add_column_tap<false>)(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
-                           sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+            (p == std::max(0, i - hp) ? add_column_tap<true> : add_column_tap<false>)(
+                rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp, sq, sqq,
+                spq, sz, szp, szq, so, static_cast<float>(p - i), w);
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
         // and no call, so that it vectorises; the arc tangent follows.
