@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,31 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
+
+// GCC/Clang vector extensions for the local ground's windows (what each lane computes is
+// the scalar expression's IEEE result, so the values do not depend on the vectors).
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+using D2 = double __attribute__((vector_size(16)));
+using L2 = int64_t __attribute__((vector_size(16)));
+
+F4 load4(const float* p)
+{
+    F4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+I4 load4(const int32_t* p)
+{
+    I4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
+F4 nan4() { return F4{kNaN, kNaN, kNaN, kNaN}; }
+D2 low2(F4 v) { return D2{v[0], v[1]}; }
+D2 high2(F4 v) { return D2{v[2], v[3]}; }
+D2 abs2(D2 v) { return (D2)((L2)v & L2{INT64_MAX, INT64_MAX}); }
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
@@ -42,17 +68,19 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
     return static_cast<std::size_t>(c);
 }
 
-// The value of rank k (from 0) among the finite v[0, n): what std::nth_element would put
-// at k. A bracket [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
+// The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
+// marks a hole): what std::nth_element would put at k were the holes left out. A bracket
+// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
 // found from guess in steps that grow from `step`, then narrowed at the level the counts
 // point to until it holds few values; those are gathered and the one of rank k among
 // them picked by insertion sort (the first of equal values in v's order, as a running
 // minimum would). buf holds n values.
-float select_rank(const float* v, std::size_t n, std::size_t k, float guess, float step, float* __restrict buf)
+float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, float step,
+                  float* __restrict buf)
 {
     constexpr std::size_t kFew = 12;
     float lo = -kInf, hi = kInf;
-    std::size_t below_lo = 0, below_hi = n;
+    std::size_t below_lo = 0, below_hi = finite;
     float t = guess;
     for (int iter = 0; iter < 64 && below_hi - below_lo > kFew; ++iter) {
         const std::size_t c = count_below(v, n, t);
@@ -75,15 +103,27 @@ float select_rank(const float* v, std::size_t n, std::size_t k, float guess, flo
             step *= 2.0f;
         }
     }
-    // The values in [lo, hi), in v's order; rank k - below_lo among them.
-    std::size_t m = 0;
-    for (std::size_t u = 0; u < n; ++u) {
+    // The values in [lo, hi), in v's order; rank k - below_lo among them. Four at a time
+    // tested, and the few fours that hold one gathered.
+    std::size_t m = 0, u = 0;
+    const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
+    for (; u + 4 <= n; u += 4) {
+        const I4 in = (load4(v + u) >= lo4) & (load4(v + u) < hi4);
+        if ((in[0] | in[1] | in[2] | in[3]) == 0) continue;
+        for (std::size_t e = u; e < u + 4; ++e) {
+            buf[m] = v[e];
+            m += v[e] >= lo && v[e] < hi ? 1 : 0;
+        }
+    }
+    for (; u < n; ++u) {
         buf[m] = v[u];
         m += v[u] >= lo && v[u] < hi ? 1 : 0;
     }
     const std::size_t r = k - below_lo;
     if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
-        std::vector<float> copy(v, v + n);
+        std::vector<float> copy;
+        for (std::size_t e = 0; e < n; ++e)
+            if (!std::isnan(v[e])) copy.push_back(v[e]);
         std::nth_element(copy.begin(), copy.begin() + static_cast<std::ptrdiff_t>(k), copy.end());
         return copy[k];
     }
@@ -138,12 +178,27 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
 // (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
 // One column offset d of the slope's row pass: the row's weights w, heights z and obstacle
 // flags o, shifted by d, added into the five row sums and the obstacle count.
+template <bool kFirst>
 [[gnu::noinline]] void add_row_tap(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo,
                  float* __restrict rw, float* __restrict rwq, float* __restrict rwqq, float* __restrict rwz,
                  float* __restrict rwzq, float* __restrict ro, int d, int ny)
 {
     const float fd = static_cast<float>(d);
     const int from = std::max(0, -d), to = std::max(0, ny - std::max(0, d));
+    if (kFirst) {  // the sums start at +0 (0 + x below), so that no pass clears them first
+        for (int j = 0; j < std::min(from, ny); ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
+        for (int j = std::max(to, std::min(from, ny)); j < ny; ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
+        for (int j = from; j < to; ++j) {
+            const float wv = lw[j + d], zv = lz[j + d] * wv;
+            rw[j] = 0.0f + wv;
+            rwq[j] = 0.0f + fd * wv;
+            rwqq[j] = 0.0f + fd * fd * wv;
+            rwz[j] = 0.0f + zv;
+            rwzq[j] = 0.0f + fd * zv;
+            ro[j] = 0.0f + lo[j + d];
+        }
+        return;
+    }
     for (int j = from; j < to; ++j) {
         const float wv = lw[j + d], zv = lz[j + d] * wv;
         rw[j] += wv;
@@ -156,6 +211,7 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
 }
 
 // One row offset fd of the column pass: a row's sums added into the window's moments.
+template <bool kFirst>
 [[gnu::noinline]] void add_column_tap(const float* __restrict rw, const float* __restrict rwq,
                                       const float* __restrict rwqq, const float* __restrict rwz,
                                       const float* __restrict rwzq, const float* __restrict ro, float* __restrict s0,
@@ -164,6 +220,21 @@ void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::ve
                                       float* __restrict szp, float* __restrict szq, float* __restrict so, float fd,
                                       std::size_t w)
 {
+    if (kFirst) {  // the sums start at +0: 0 + x, so that no pass clears them first
+        for (std::size_t j = 0; j < w; ++j) {
+            s0[j] = 0.0f + rw[j];
+            sp[j] = 0.0f + fd * rw[j];
+            spp[j] = 0.0f + fd * fd * rw[j];
+            sq[j] = 0.0f + rwq[j];
+            sqq[j] = 0.0f + rwqq[j];
+            spq[j] = 0.0f + fd * rwq[j];
+            sz[j] = 0.0f + rwz[j];
+            szp[j] = 0.0f + fd * rwz[j];
+            szq[j] = 0.0f + rwzq[j];
+            so[j] = 0.0f + ro[j];
+        }
+        return;
+    }
     for (std::size_t j = 0; j < w; ++j) {
         s0[j] += rw[j];
         sp[j] += fd * rw[j];
@@ -214,9 +285,10 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // local_ground_reference, lattice point by lattice point, is the specification. Here the
     // window's geometry (the moments of its known cells' offsets) comes from sums along the
     // columns of a lattice row's window rows, then along the window's columns; the heights'
-    // moments from the window's points in a buffer (the same floats as the reference's,
-    // summed in double: integer offsets times floats, exact in any order); the second
-    // plane's by subtracting the points off the first; the percentile by counting.
+    // moments from the window's points in rows of vectors of 4, unknown points as NaN (the
+    // same floats as the reference's, summed in double: integer offsets times floats, exact
+    // in any order); the second plane's by subtracting the points off the first; the
+    // percentile by counting.
     const int nx = g.nx, ny = g.ny, h = ground_half_width(radius_m, g.resolution_m);
     const int lx = (nx - 1) / kGroundStride + 1, ly = (ny - 1) / kGroundStride + 1;
     const std::size_t n = g.cells(), w = static_cast<std::size_t>(ny), half = (w + 1) / 2;
@@ -225,18 +297,21 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
     known_d_.resize(n);
-    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half, kNaN);
+    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half + 4, kNaN);  // + 4: a window row's last vector
     for (std::size_t k = 0; k < n; ++k) known_d_[k] = known_[k] ? 1.0 : 0.0;
     for (int i = 0; i < nx; ++i)
         for (std::size_t j = 0; j < w; ++j)
             if (known_[i * w + j]) parity_means_[((j & 1) * nx + i) * half + j / 2] = g.mean_z_m[i * w + j];
-    const std::size_t max_points = static_cast<std::size_t>(h + 1) * static_cast<std::size_t>(h + 1);
+    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
+    const std::size_t row_vectors = (static_cast<std::size_t>(h) + 4) / 4;
+    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
     win_v_.resize(max_points);
-    win_p_.resize(max_points);
-    win_q_.resize(max_points);
     win_sel_.resize(max_points);
-    win_off_.resize(max_points);
-    win_idx_.resize(max_points);
+    win_q_.resize(4 * row_vectors);
+    lane_known_.resize(4 * row_vectors);
+    lane_q_.resize(2 * row_vectors);
+    lane_z_.resize(2 * row_vectors);
+    lane_pz_.resize(2 * row_vectors);
     column_sums_.resize(3 * w);
     double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -268,80 +343,109 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             if (m.s0 < 3) continue;
             const float zc = g.mean_z_m[static_cast<std::size_t>(i) * w + j];
             const float zref = std::isnan(zc) ? 0.0f : zc;
-            // The window's known points, relative to zref.
-            std::size_t count = 0;
-            const int nq = (qhi - qlo) / 2 + 1;
-            for (int p = plo; p <= phi; p += 2) {
-                const float* row = &parity_means_[((qlo & 1) * nx + p) * half + qlo / 2];
-                const float fp = static_cast<float>(p - i);
-                for (int t = 0; t < nq; ++t) {
-                    const float v = row[t] - zref;
-                    win_v_[count] = v;
-                    win_p_[count] = fp;
-                    win_q_[count] = static_cast<float>(qlo + 2 * t - j);
-                    count += std::isnan(v) ? 0 : 1;
+            // The window's points relative to zref: nr rows of nv vectors of 4 (the row's nq
+            // points, then NaN; NaN also where unknown). count of them are known (the
+            // geometry's s0).
+            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1, nv = (nq + 3) / 4;
+            const std::size_t count = static_cast<std::size_t>(m.s0);
+            float* __restrict v = win_v_.data();
+            float* __restrict fq = win_q_.data();
+            for (int t = 0; t < 4 * nv; ++t) {
+                fq[t] = t < nq ? static_cast<float>(qlo + 2 * t - j) : 0.0f;
+                lane_known_[static_cast<std::size_t>(t)] = t < nq ? -1 : 0;
+            }
+            const F4 zr = {zref, zref, zref, zref};
+            for (int r = 0; r < nr; ++r) {
+                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
+                for (int c = 0; c < nv; ++c) {
+                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
+                    const F4 x = load4(row + 4 * c) - zr;
+                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, (F4)(((I4)x & in) | ((I4)nan4() & ~in)));
                 }
             }
-            // Two accumulators each, in registers (the sums are exact, so their order does not
-            // matter).
-            double sz0 = 0, sz1 = 0, spz0 = 0, spz1 = 0, sqz0 = 0, sqz1 = 0;
-            std::size_t e = 0;
-            for (; e + 1 < count; e += 2) {
-                const double v0 = win_v_[e], v1 = win_v_[e + 1];
-                sz0 += v0;
-                sz1 += v1;
-                spz0 += win_p_[e] * v0;
-                spz1 += win_p_[e + 1] * v1;
-                sqz0 += win_q_[e] * v0;
-                sqz1 += win_q_[e + 1] * v1;
+            // The heights' moments, per lane of the window's columns, then across them. The sums
+            // are exact (floats times small integers, in double), so their order does not
+            // matter; an unknown point adds +0 to a sum that started at +0.
+            D2* __restrict az = lane_z_.data();
+            D2* __restrict apz = lane_pz_.data();
+            D2* __restrict dq = lane_q_.data();
+            for (int c = 0; c < nv; ++c) {
+                const F4 q = load4(fq + 4 * c);
+                dq[2 * c] = low2(q);
+                dq[2 * c + 1] = high2(q);
+                az[2 * c] = az[2 * c + 1] = apz[2 * c] = apz[2 * c + 1] = D2{0.0, 0.0};
             }
-            if (e < count) {
-                const double v = win_v_[e];
-                sz0 += v;
-                spz0 += win_p_[e] * v;
-                sqz0 += win_q_[e] * v;
+            for (int r = 0; r < nr; ++r) {
+                const double p = plo + 2 * r - i;
+                const D2 fp = {p, p};
+                for (int c = 0; c < nv; ++c) {
+                    const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
+                    const F4 xz = (F4)((I4)x & (x == x));
+                    const D2 lo = low2(xz), hi = high2(xz);
+                    az[2 * c] += lo;
+                    az[2 * c + 1] += hi;
+                    apz[2 * c] += fp * lo;
+                    apz[2 * c + 1] += fp * hi;
+                }
             }
-            m.sz = sz0 + sz1;
-            m.spz = spz0 + spz1;
-            m.sqz = sqz0 + sqz1;
+            for (int e = 0; e < 2 * nv; ++e) {
+                const D2 qz = dq[e] * az[e];
+                m.sz += az[e][0] + az[e][1];
+                m.spz += apz[e][0] + apz[e][1];
+                m.sqz += qz[0] + qz[1];
+            }
             const PlaneFit first = plane_from_moments(m, nullptr);
-            // The second plane: without the points more than band off the first. The test in
-            // a pass that vectorises, then the few points off it subtracted in order.
-            std::size_t outliers = 0;
+            // The second plane: without the points more than band off the first (unknown ones
+            // compare false). Whether any is off, tested in vectors; the few windows with one
+            // then subtract those points (exact sums: in any order).
             {
                 const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                const float* __restrict vv = win_v_.data();
-                const float* __restrict vp = win_p_.data();
-                const float* __restrict vq = win_q_.data();
-                uint8_t* __restrict off = win_off_.data();
-                for (std::size_t u = 0; u < count; ++u) {
-                    const double p = vp[u], q = vq[u], v = vv[u];
-                    off[u] = std::abs(v - (fa + fgp * p + fgq * q)) > band ? 1 : 0;
+                const D2 band2 = {band, band}, gq2 = {fgq, fgq};
+                for (int e = 0; e < 2 * nv; ++e) apz[e] = gq2 * dq[e];  // reused: fgq q
+                L2 any = {0, 0};
+                for (int r = 0; r < nr; ++r) {
+                    const double p = static_cast<float>(plo + 2 * r - i), cr = fa + fgp * p;
+                    const D2 cr2 = {cr, cr};
+                    for (int c = 0; c < nv; ++c) {
+                        const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
+                        any |= abs2(low2(x) - (cr2 + apz[2 * c])) > band2;
+                        any |= abs2(high2(x) - (cr2 + apz[2 * c + 1])) > band2;
+                    }
                 }
-                for (std::size_t u = 0; u < count; ++u) {
-                    win_idx_[outliers] = static_cast<uint32_t>(u);
-                    outliers += off[u];
+                if (any[0] | any[1]) {
+                    for (int r = 0; r < nr; ++r)
+                        for (int t = 0; t < nq; ++t) {
+                            const double p = static_cast<float>(plo + 2 * r - i), q = fq[t];
+                            const double x = v[(static_cast<std::size_t>(r) * nv) * 4 + t];
+                            if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
+                            m.s0 -= 1;
+                            m.sp -= p;
+                            m.sq -= q;
+                            m.spp -= p * p;
+                            m.sqq -= q * q;
+                            m.spq -= p * q;
+                            m.sz -= x;
+                            m.spz -= p * x;
+                            m.sqz -= q * x;
+                        }
                 }
-            }
-            for (std::size_t o = 0; o < outliers; ++o) {
-                const std::size_t u = win_idx_[o];
-                const double p = win_p_[u], q = win_q_[u], v = win_v_[u];
-                m.s0 -= 1;
-                m.sp -= p;
-                m.sq -= q;
-                m.spp -= p * p;
-                m.sqq -= q * q;
-                m.spq -= p * q;
-                m.sz -= v;
-                m.spz -= p * v;
-                m.sqz -= q * v;
             }
             const PlaneFit fit = plane_from_moments(m, &first);
-            float* __restrict lv = win_v_.data();
-            const float* __restrict lp = win_p_.data();
-            const float* __restrict lq = win_q_.data();
-            for (std::size_t u = 0; u < count; ++u) lv[u] += zref - (fit.gp * lp[u] + fit.gq * lq[u]);
-            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lv, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
+            // Levelled: each point less the plane's slope (unknown points stay NaN).
+            {
+                const F4 gq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
+                for (int r = 0; r < nr; ++r) {
+                    const float gp = fit.gp * static_cast<float>(plo + 2 * r - i);
+                    const F4 gp4 = {gp, gp, gp, gp};
+                    for (int c = 0; c < nv; ++c) {
+                        float* at = v + (static_cast<std::size_t>(r) * nv + c) * 4;
+                        store4(at, load4(at) + (zr - (gp4 + gq4 * load4(fq + 4 * c))));
+                    }
+                }
+            }
+            const std::size_t points = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv) * 4;
+            lattice_[static_cast<std::size_t>(a) * ly + b] =
+                select_rank(v, points, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
@@ -477,7 +581,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     line_z_.resize(w);
     line_o_.resize(w);
     auto row_pass = [&](int i) {
-        std::fill_n(rows(0, i), kRowSums * w, 0.0f);
         std::fill(line_w_.begin(), line_w_.end(), 0.0f);
         std::fill(line_z_.begin(), line_z_.end(), 0.0f);
         std::fill(line_o_.begin(), line_o_.end(), 0.0f);
@@ -492,21 +595,23 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             line_z_[j] = g.mean_z_m[k] - z0;
         }
         for (int d = -hp; d <= hp; ++d)
-            add_row_tap(line_w_.data(), line_z_.data(), line_o_.data(), rows(W, i), rows(WQ, i), rows(WQQ, i),
-                        rows(WZ, i), rows(WZQ, i), rows(OBST, i), d, ny);
+            (d == -hp ? add_row_tap<true> : add_row_tap<false>)(line_w_.data(), line_z_.data(), line_o_.data(),
+                                                                 rows(W, i), rows(WQ, i), rows(WQQ, i), rows(WZ, i),
+                                                                 rows(WZQ, i), rows(OBST, i), d, ny);
     };
     int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
     for (int i = 0; i < nx; ++i) {
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
-        moments_.assign(w * 10, 0.0f);
+        moments_.resize(w * 10);
         float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];
         float *sqq = &moments_[4 * w], *spq = &moments_[5 * w], *sz = &moments_[6 * w], *szp = &moments_[7 * w];
         float *szq = &moments_[8 * w], *so = &moments_[9 * w];
         for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
-            add_column_tap(rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp,
-                           sq, sqq, spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+            (p == std::max(0, i - hp) ? add_column_tap<true> : add_column_tap<false>)(
+                rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp, sq, sqq,
+                spq, sz, szp, szq, so, static_cast<float>(p - i), w);
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
         // and no call, so that it vectorises; the arc tangent follows.

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <cstring>
@@ -269,4 +270,35 @@ TEST_CASE("one update equals the plain classifier and arcs on random maps")
             ++maps;
         }
     CHECK(maps == 6);
+}
+
+TEST_CASE("one update equals the plain classifier and arcs on small, thin and cut maps")
+{
+    // Windows cut by every edge, rows of the ground's window that fill no whole vector of 4
+    // (half-widths 2, 6 and 9), unknown holes, cells of spread shares only, aged and decayed
+    // cells, heights near 0 where the floats are finest.
+    std::mt19937 rng(2424);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int maps = 0;
+    for (const double base : {1e-4, 0.0, 120.0})
+        for (const auto& [nx, ny] : {std::pair{3, 4}, std::pair{40, 1}, std::pair{1, 40}, std::pair{9, 200}, std::pair{23, 17}}) {
+            TerrainGrid g = random_map(rng, nx, ny, base);
+            g.residual_yaw_rad = (u(rng) - 0.5) * 0.6;
+            g.position_m = {0, 0, base};
+            for (std::size_t k = 0; k < g.cells(); ++k) {
+                if (g.count[k] > 0 && u(rng) < 0.3) g.age_s[k] = static_cast<float>(80 * u(rng));
+                if (g.count[k] > 0 && u(rng) < 0.05) {
+                    g.count[k] = 3;
+                    g.max_z_m[k] = g.min_z_m[k] = g.mean_z_m[k];
+                }
+            }
+            TraverseConfig config;
+            config.classifier.ground_radius_m = std::array{0.5, 1.3, 1.9}[static_cast<std::size_t>(maps % 3)];
+            config.classifier.step_radius_m = maps % 2 ? 0.2 : 0.45;
+            config.arcs.count = 5;
+            CAPTURE(base, nx, ny, maps);
+            compare_update(g, config);
+            ++maps;
+        }
+    CHECK(maps == 15);
 }

@@ -68,12 +68,14 @@ private:
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_;
     std::vector<float> window_;
     // The local ground's: known flags (double), the means split by column parity, a lattice
-    // row's column sums, a window's known points, which of them are off the first plane,
-    // the values gathered for the percentile's last step.
+    // row's column sums, a window's points (rows padded to vectors of 4, NaN where unknown),
+    // its columns' offsets and which lanes hold a column, the values gathered for the
+    // percentile's last step; per lane (two doubles): the columns' offsets and the heights' sums.
     std::vector<double> known_d_, column_sums_;
-    std::vector<float> parity_means_, win_v_, win_p_, win_q_, win_sel_;
-    std::vector<uint8_t> win_off_;
-    std::vector<uint32_t> win_idx_;
+    std::vector<float> parity_means_, win_v_, win_q_, win_sel_;
+    std::vector<int32_t> lane_known_;
+    using Lanes = double __attribute__((vector_size(16)));
+    std::vector<Lanes> lane_q_, lane_z_, lane_pz_;
 };
 
 }  // namespace ugv::traverse
