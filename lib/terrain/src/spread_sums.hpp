@@ -91,27 +91,9 @@ public:
         const double dz = static_cast<double>(z) - z0_;
         const double wd = static_cast<double>(w);
         const double wz = wd * dz, wz2 = wz * dz;
-        // The corner record is rows[a] * columns[b], component by component; built in memory
-        // so that the 16 updates are plain vector loads, multiplies and adds.
-        alignas(64) double rows[4][kCornerComponents], columns[4][kCornerComponents];
-        for (int a = 0; a < 4; ++a) {
-            const double f = ax.fraction[a], e = ay.fraction[a];
-            double* r = rows[a];
-            r[kW] = wd * f;
-            r[kWz] = wz * f;
-            r[kWz2] = wz2 * f;
-            r[kN] = ax.count[a];
-            r[kX1] = wd * ax.moment[a];
-            r[kX2] = wd * ax.moment2[a];
-            r[kY1] = wd * f;
-            r[kY2] = wd * f;
-            double* c = columns[a];
-            c[kW] = c[kWz] = c[kWz2] = c[kX1] = c[kX2] = e;
-            c[kN] = ay.count[a];
-            c[kY1] = ay.moment[a];
-            c[kY2] = ay.moment2[a];
-        }
-        kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, rows, columns);
+        // The corner record is rows[a] * columns[b], component by component (spread_corners.hpp).
+        const double weight[3] = {wd, wz, wz2};
+        kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
         // Its height goes into the extremes of the cell it was measured in only (section 3.5).
         const int own_row = static_cast<int>(std::floor(cx)), own_column = static_cast<int>(std::floor(cy));
         if (own_row >= 0 && own_row < rows_ && own_column >= 0 && own_column < columns_)
@@ -192,10 +174,9 @@ private:
     // One axis of a footprint: the four corner positions (cells, >= 0, <= limit + 1) and each
     // one's entries: the overlap fraction's difference, the touched count's, the centroid
     // moment's (share times centroid offset, m) and its square's (m^2).
-    struct Axis
+    struct Axis : CornerAxis
     {
         int at[4];
-        double fraction[4], count[4], moment[4], moment2[4];
     };
 
     // The footprint [c - h, c + h] clamped to [0, limit) and renormalised, as axis_footprint.

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "ugv/terrain/simd.hpp"
 #include "ugv/terrain/terrain_mapper.hpp"
 
 using namespace ugv::terrain;
@@ -123,8 +124,11 @@ MapSnapshot synthetic(bool exact, int max_cells, MapTotals& totals)
 
 TEST_CASE("summed-area spreading gives the exact spreading's map: sigmas 0.05-1 m, caps 1-4 cells")
 {
+    // Both builds of the corner kernel (AVX2 where the CPU has it, and the generic one).
+    const SimdLevel level = GENERATE(simd_level(), SimdLevel::generic);
+    const ScopedSimdLevel use(level);
     for (const int max_cells : {1, 2, 4}) {
-        INFO("spread_max_cells " << max_cells);
+        INFO("spread_max_cells " << max_cells << ", generic kernels " << (level == SimdLevel::generic));
         MapTotals exact_totals, summed_totals;
         const MapSnapshot exact = synthetic(true, max_cells, exact_totals);
         const MapSnapshot summed = synthetic(false, max_cells, summed_totals);
