@@ -103,7 +103,8 @@ void EgocentricGrid::clear()
 void EgocentricGrid::clear_rows(int first_unwrapped_row, int rows)
 {
     for (int r = first_unwrapped_row; r < first_unwrapped_row + rows; ++r) {
-        const int first = physical(r, 0);
+        // The whole physical row: with the column ring its first cell is not physical(r, 0).
+        const int first = physical(r, 0) / ny_ * ny_;
         for (int cell = first; cell < first + ny_; ++cell) {
             uint32_t& s = slot_[static_cast<std::size_t>(cell)];
             if (s == kNoSlot) continue;

@@ -610,6 +610,10 @@ TEST_CASE("a sideways move by the column ring gives the full transform's map, ce
     // A wrap after a column shift clears whole unwrapped rows, whatever m_j.
     fuse_random(shifted, rng, 0.5f);
     REQUIRE(shifted.shift_columns(2) > 0);
+    // Samples in the columns that just came in too: a wrap that took a physical row to
+    // start at physical(i, 0) would leave them and clear the next row's instead.
+    fuse_random(shifted, rng, 0.0f);
+    for (int j = 35; j < 37; ++j) REQUIRE(shifted.count(40, j) > 0);
     moved = shifted;
     shifted.wrap_forward(3);
     for (int i = 38; i < 41; ++i)
