@@ -26,22 +26,23 @@ struct RangeTally
     };
     std::vector<Point> points;  // world frame
 
-    // Keys on the snapshot's grid: cell boundaries at its origin plus multiples of its resolution.
+    // Keys on the snapshot's grid: cell boundaries at its origin plus multiples of its
+    // resolution (the world-aligned map is not turned: its grid is the world's, shifted).
     std::unordered_map<int64_t, std::pair<double, double>> per_cell(const MapSnapshot& m) const
     {
-        const double ox = m.pose.position_m.x() + m.origin_x_m, oy = m.pose.position_m.y() + m.origin_y_m;
         std::unordered_map<int64_t, std::pair<double, double>> cells;
         for (const Point& p : points) {
-            auto [it, fresh] = cells.try_emplace(key(p.x, p.y, ox, oy, m.resolution_m), p.range, p.range);
+            auto [it, fresh] = cells.try_emplace(key(m, p.x, p.y), p.range, p.range);
             it->second.first = std::min(it->second.first, p.range);
             it->second.second = std::max(it->second.second, p.range);
         }
         return cells;
     }
-    static int64_t key(double x, double y, double ox, double oy, double resolution)
+    static int64_t key(const MapSnapshot& m, double x, double y)
     {
-        const auto i = static_cast<int64_t>(std::floor((x - ox) / resolution));
-        const auto j = static_cast<int64_t>(std::floor((y - oy) / resolution));
+        const double ox = m.pose.position_m.x() + m.origin_x_m, oy = m.pose.position_m.y() + m.origin_y_m;
+        const auto i = static_cast<int64_t>(std::floor((x - ox) / m.resolution_m));
+        const auto j = static_cast<int64_t>(std::floor((y - oy) / m.resolution_m));
         return i * 1'000'000 + j;
     }
 };
@@ -127,12 +128,9 @@ Trial one_trial(const FloorStudyCase& sc, StatisticsKind statistics, const Floor
     mapper.snapshot(snapshot);
     Trial trial;
     trial.all = evaluate(snapshot, [](double, double) { return 0.0; });
-    // The world-aligned map is not turned, so its grid is the world's shifted by the origin.
     const auto ranges = tally.per_cell(snapshot);
-    const double ox = snapshot.pose.position_m.x() + snapshot.origin_x_m;
-    const double oy = snapshot.pose.position_m.y() + snapshot.origin_y_m;
     trial.several_ranges = evaluate(snapshot, [&](double x, double y) {
-        const auto it = ranges.find(RangeTally::key(x, y, ox, oy, snapshot.resolution_m));
+        const auto it = ranges.find(RangeTally::key(snapshot, x, y));
         const bool several = it != ranges.end() && it->second.second >= o.several_ranges_ratio * it->second.first;
         return several ? 0.0 : NAN;
     });
