@@ -167,7 +167,6 @@ LaserFitResult fit_laser_mount(const std::vector<LaserBeam>& beams, const nodsca
     for (int pass = 0; pass < 2 && !converged; ++pass) {
         // The second pass only if the first found a parameter it cannot determine: fitted again
         // without it.
-        converged = false;
         for (out.iterations = 0; out.iterations < c.max_iterations; ++out.iterations) {
             const Step s = normal_equations(rays, x, gate, -1);
             if (s.n < 4) break;
