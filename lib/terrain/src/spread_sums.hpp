@@ -95,11 +95,14 @@ public:
         const double weight[3] = {wd, wz, wz2};
         kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
         // Its height goes into the extremes of the cell it was measured in only (section 3.5).
-        const int own_row = static_cast<int>(std::floor(cx)), own_column = static_cast<int>(std::floor(cy));
-        if (own_row >= 0 && own_row < rows_ && own_column >= 0 && own_column < columns_)
-            extremes_[static_cast<std::size_t>(own_row) * static_cast<std::size_t>(columns_) +
-                      static_cast<std::size_t>(own_column)]
-                .add(z);
+        // (Truncation is the floor for cx, cy >= 0; std::floor is a library call without SSE4.1.)
+        if (cx >= 0.0f && cy >= 0.0f) {
+            const int own_row = static_cast<int>(cx), own_column = static_cast<int>(cy);
+            if (own_row < rows_ && own_column < columns_)
+                extremes_[static_cast<std::size_t>(own_row) * static_cast<std::size_t>(columns_) +
+                          static_cast<std::size_t>(own_column)]
+                    .add(z);
+        }
         return true;
     }
 
@@ -251,26 +254,36 @@ private:
     void add_to(Grid& grid, const CellArrays& cells, int i, int j, const Record& total)
     {
         const uint32_t at = grid.storage_of(grid.physical(i, j));
-        // The cell's share of the pending points as a set of samples about their mean height.
         const double w = total[kW];
-        const double mean = z0_ + total[kWz] / w;
-        CellSums b;
-        b.w = static_cast<float>(w);
-        b.z_ref_m = static_cast<float>(mean);
-        const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
-        b.z_wz = static_cast<float>(total[kWz] + w * d);
-        b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
-        b.x_wx = static_cast<float>(total[kX1]);
-        b.x_wx2 = static_cast<float>(total[kX2]);
-        b.y_wy = static_cast<float>(total[kY1]);
-        b.y_wy2 = static_cast<float>(total[kY2]);
         CellSums& a = cells.sums[at];
-        // The heavier side keeps its reference height (as a sample outweighing a cell moves it).
-        if (a.empty() || b.w > a.w) {
-            add_sums(b, a);
+        if (!(w <= a.w)) [[unlikely]] {
+            // Empty, or the shares outweigh the cell: they become the cell, about their own
+            // mean height, and the cell is added to them (the heavier side keeps its reference).
+            const double mean = z0_ + total[kWz] / w;
+            CellSums b;
+            b.w = static_cast<float>(w);
+            b.z_ref_m = static_cast<float>(mean);
+            const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
+            b.z_wz = static_cast<float>(total[kWz] + w * d);
+            b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
+            b.x_wx = static_cast<float>(total[kX1]);
+            b.x_wx2 = static_cast<float>(total[kX2]);
+            b.y_wy = static_cast<float>(total[kY1]);
+            b.y_wy2 = static_cast<float>(total[kY2]);
+            if (!a.empty()) add_sums(b, a);
             a = b;
         } else {
-            add_sums(a, b);
+            // The shares' z sums straight about the cell's reference, in double (add_sums
+            // without the float cell it would build for them).
+            const double d = z0_ - static_cast<double>(a.z_ref_m);
+            const double wz = total[kWz] + w * d;
+            a.w = static_cast<float>(a.w + w);
+            a.z_wz = static_cast<float>(a.z_wz + wz);
+            a.z_wz2 = static_cast<float>(a.z_wz2 + (total[kWz2] + d * (wz + total[kWz])));
+            a.x_wx = static_cast<float>(a.x_wx + total[kX1]);
+            a.x_wx2 = static_cast<float>(a.x_wx2 + total[kX2]);
+            a.y_wy = static_cast<float>(a.y_wy + total[kY1]);
+            a.y_wy2 = static_cast<float>(a.y_wy2 + total[kY2]);
         }
         CellTally& tally = cells.tallies[at];
         tally.count += static_cast<uint32_t>(total[kN] + 0.5);  // a whole number >= 1, exact in double
