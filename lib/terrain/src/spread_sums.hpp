@@ -78,6 +78,7 @@ public:
         if (!axis(cx, h, rows_, g, ax) || !axis(cy, h, columns_, g, ay)) return false;
         if (!pending_) {
             pending_ = true;
+            corners_kernel_ = kernels().spread_corners;  // once per pending set, not per point
             z0_ = z;
             newest_ms_ = t_ms;
             row_lo_ = ax.at[0];
@@ -93,7 +94,7 @@ public:
         const double wz = wd * dz, wz2 = wz * dz;
         // The corner record is rows[a] * columns[b], component by component (spread_corners.hpp).
         const double weight[3] = {wd, wz, wz2};
-        kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
+        corners_kernel_(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
         // Its height goes into the extremes of the cell it was measured in only (section 3.5).
         // (Truncation is the floor for cx, cy >= 0; std::floor is a library call without SSE4.1.)
         if (cx >= 0.0f && cy >= 0.0f) {
@@ -303,6 +304,7 @@ private:
     std::vector<uint64_t> spans_;         // per corner row, the columns its pending footprints span
     std::vector<uint64_t> active_;        // during flush(): the columns an open footprint covers
     bool pending_ = false;
+    SpreadCorners corners_kernel_ = nullptr;  // the table's, taken at the first pending point
     double z0_ = 0.0;  // the pending heights are taken from the first one's
     TimeTick newest_ms_ = kNoTime;
     int row_lo_ = 0, row_hi_ = 0;  // the pending corners' rows
