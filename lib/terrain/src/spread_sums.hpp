@@ -78,6 +78,7 @@ public:
         if (!axis(cx, h, rows_, g, ax) || !axis(cy, h, columns_, g, ay)) return false;
         if (!pending_) {
             pending_ = true;
+            corners_kernel_ = kernels().spread_corners;  // once per pending set, not per point
             z0_ = z;
             newest_ms_ = t_ms;
             row_lo_ = ax.at[0];
@@ -93,13 +94,16 @@ public:
         const double wz = wd * dz, wz2 = wz * dz;
         // The corner record is rows[a] * columns[b], component by component (spread_corners.hpp).
         const double weight[3] = {wd, wz, wz2};
-        kernels().spread_corners(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
+        corners_kernel_(reinterpret_cast<double*>(corners_), stride_, ax.at, ay.at, weight, ax, ay);
         // Its height goes into the extremes of the cell it was measured in only (section 3.5).
-        const int own_row = static_cast<int>(std::floor(cx)), own_column = static_cast<int>(std::floor(cy));
-        if (own_row >= 0 && own_row < rows_ && own_column >= 0 && own_column < columns_)
-            extremes_[static_cast<std::size_t>(own_row) * static_cast<std::size_t>(columns_) +
-                      static_cast<std::size_t>(own_column)]
-                .add(z);
+        // (Truncation is the floor for cx, cy >= 0; std::floor is a library call without SSE4.1.)
+        if (cx >= 0.0f && cy >= 0.0f) {
+            const int own_row = static_cast<int>(cx), own_column = static_cast<int>(cy);
+            if (own_row < rows_ && own_column < columns_)
+                extremes_[static_cast<std::size_t>(own_row) * static_cast<std::size_t>(columns_) +
+                          static_cast<std::size_t>(own_column)]
+                    .add(z);
+        }
         return true;
     }
 
@@ -251,26 +255,36 @@ private:
     void add_to(Grid& grid, const CellArrays& cells, int i, int j, const Record& total)
     {
         const uint32_t at = grid.storage_of(grid.physical(i, j));
-        // The cell's share of the pending points as a set of samples about their mean height.
         const double w = total[kW];
-        const double mean = z0_ + total[kWz] / w;
-        CellSums b;
-        b.w = static_cast<float>(w);
-        b.z_ref_m = static_cast<float>(mean);
-        const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
-        b.z_wz = static_cast<float>(total[kWz] + w * d);
-        b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
-        b.x_wx = static_cast<float>(total[kX1]);
-        b.x_wx2 = static_cast<float>(total[kX2]);
-        b.y_wy = static_cast<float>(total[kY1]);
-        b.y_wy2 = static_cast<float>(total[kY2]);
         CellSums& a = cells.sums[at];
-        // The heavier side keeps its reference height (as a sample outweighing a cell moves it).
-        if (a.empty() || b.w > a.w) {
-            add_sums(b, a);
+        if (!(w <= a.w)) [[unlikely]] {
+            // Empty, or the shares outweigh the cell: they become the cell, about their own
+            // mean height, and the cell is added to them (the heavier side keeps its reference).
+            const double mean = z0_ + total[kWz] / w;
+            CellSums b;
+            b.w = static_cast<float>(w);
+            b.z_ref_m = static_cast<float>(mean);
+            const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
+            b.z_wz = static_cast<float>(total[kWz] + w * d);
+            b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
+            b.x_wx = static_cast<float>(total[kX1]);
+            b.x_wx2 = static_cast<float>(total[kX2]);
+            b.y_wy = static_cast<float>(total[kY1]);
+            b.y_wy2 = static_cast<float>(total[kY2]);
+            if (!a.empty()) add_sums(b, a);
             a = b;
         } else {
-            add_sums(a, b);
+            // The shares' z sums straight about the cell's reference, in double (add_sums
+            // without the float cell it would build for them).
+            const double d = z0_ - static_cast<double>(a.z_ref_m);
+            const double wz = total[kWz] + w * d;
+            a.w = static_cast<float>(a.w + w);
+            a.z_wz = static_cast<float>(a.z_wz + wz);
+            a.z_wz2 = static_cast<float>(a.z_wz2 + (total[kWz2] + d * (wz + total[kWz])));
+            a.x_wx = static_cast<float>(a.x_wx + total[kX1]);
+            a.x_wx2 = static_cast<float>(a.x_wx2 + total[kX2]);
+            a.y_wy = static_cast<float>(a.y_wy + total[kY1]);
+            a.y_wy2 = static_cast<float>(a.y_wy2 + total[kY2]);
         }
         CellTally& tally = cells.tallies[at];
         tally.count += static_cast<uint32_t>(total[kN] + 0.5);  // a whole number >= 1, exact in double
@@ -290,6 +304,7 @@ private:
     std::vector<uint64_t> spans_;         // per corner row, the columns its pending footprints span
     std::vector<uint64_t> active_;        // during flush(): the columns an open footprint covers
     bool pending_ = false;
+    SpreadCorners corners_kernel_ = nullptr;  // the table's, taken at the first pending point
     double z0_ = 0.0;  // the pending heights are taken from the first one's
     TimeTick newest_ms_ = kNoTime;
     int row_lo_ = 0, row_hi_ = 0;  // the pending corners' rows

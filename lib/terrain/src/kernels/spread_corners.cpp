@@ -43,6 +43,9 @@ UGV_AVX2 void spread_corners_avx2(double* corners, std::size_t stride, const int
     const __m256d weight_lo = _mm256_set_pd(1.0, weight[2], weight[1], weight[0]);
     const __m256d weight_hi = _mm256_set1_pd(weight[0]);
     __m256d column_lo[4], column_hi[4];
+    // The column offsets once, not per corner (16 sign extensions and shifts otherwise).
+    std::size_t column_at[4];
+    for (int b = 0; b < 4; ++b) column_at[b] = static_cast<std::size_t>(at_column[b]) * kCornerComponents;
     for (int b = 0; b < 4; ++b) {
         const __m256d e = _mm256_set1_pd(y.fraction[b]);
         column_lo[b] = _mm256_blend_pd(e, _mm256_set1_pd(y.count[b]), 0x8);
@@ -55,7 +58,7 @@ UGV_AVX2 void spread_corners_avx2(double* corners, std::size_t stride, const int
             _mm256_mul_pd(weight_hi, _mm256_set_pd(x.fraction[a], x.fraction[a], x.moment2[a], x.moment[a]));
         double* line = corners + static_cast<std::size_t>(at_row[a]) * stride * kCornerComponents;
         for (int b = 0; b < 4; ++b) {
-            double* c = line + static_cast<std::size_t>(at_column[b]) * kCornerComponents;
+            double* c = line + column_at[b];
             _mm256_store_pd(c, _mm256_fmadd_pd(row_lo, column_lo[b], _mm256_load_pd(c)));
             _mm256_store_pd(c + 4, _mm256_fmadd_pd(row_hi, column_hi[b], _mm256_load_pd(c + 4)));
         }
