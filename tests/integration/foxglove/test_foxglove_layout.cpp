@@ -151,7 +151,7 @@ void panels_of(const json& node, std::set<std::string>& out)
 }
 
 // A message path `TOPIC.field.field[0]` (Foxglove's syntax; our topics have no '.') names a
-// field of the topic's JSON Schema.
+// numeric field of the topic's JSON Schema (what Plot and State Transitions draw).
 void check_message_path(const std::string& path, const std::map<std::string, Topic>& topics)
 {
     INFO("message path " << path);
@@ -220,11 +220,11 @@ TEST_CASE("the shipped Foxglove layout names only topics, fields and frames that
         } else if (type == "map") {
             shown.insert("map " + schema_of(config.at("followTopic").get<std::string>()));
             for (const auto& [topic, color] : config.at("topicColors").items()) shown.insert("map " + schema_of(topic));
-        } else if (type == "Plot") {
+        } else if (type == "Plot" || type == "StateTransitions") {
             for (const auto& p : config.at("paths")) {
                 const std::string path = p.at("value").get<std::string>();
                 check_message_path(path, topics);
-                shown.insert("Plot " + schema_of(path.substr(0, path.find('.'))));
+                shown.insert(type + " " + schema_of(path.substr(0, path.find('.'))));
             }
         } else if (type == "RosOut") {
             shown.insert("RosOut " + schema_of(config.at("topicToRender").get<std::string>()));
@@ -234,7 +234,8 @@ TEST_CASE("the shipped Foxglove layout names only topics, fields and frames that
     }
     // What the layout is for (issue 28): each kind of data in the panel that draws it.
     for (const char* want : {"3D foxglove.Grid", "3D foxglove.LaserScan", "3D foxglove.PointCloud", "3D foxglove.SceneUpdate",
-                             "map foxglove.LocationFix", "Plot foxglove.PoseInFrame", "RosOut foxglove.Log"}) {
+                             "map foxglove.LocationFix", "Plot foxglove.PoseInFrame", "StateTransitions ugv.daemon_status_t",
+                             "RosOut foxglove.Log"}) {
         INFO(want);
         CHECK(shown.count(want) >= 1);
     }
