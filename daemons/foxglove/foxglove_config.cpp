@@ -1,7 +1,7 @@
 #include "foxglove_config.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <regex>
 
 #include <asio/ip/address.hpp>
 
@@ -9,13 +9,13 @@ namespace ugv::foxglove_daemon {
 
 namespace {
 
-void check_regex(runtime::Config& cfg, const char* key, const std::string& text)
+// An address as typed: echoed in the refusal only when short and printable (one line).
+std::string quoted_address(const std::string& a)
 {
-    try {
-        std::regex re(text);
-    } catch (const std::regex_error& e) {
-        cfg.fail(key, std::string("not a valid regex: ") + e.what());
-    }
+    constexpr std::size_t kMaxShown = 64;
+    const bool printable = std::all_of(a.begin(), a.end(), [](char c) { return c > ' ' && c < 127; });
+    if (printable && a.size() <= kMaxShown) return "'" + a + "'";
+    return "a value of " + std::to_string(a.size()) + " characters";
 }
 
 }  // namespace
@@ -25,11 +25,14 @@ FoxgloveConfig read_config(runtime::Config& cfg)
     FoxgloveConfig c;
     c.channels = cfg.get_channel_regex("channels", c.channels);
     c.no_raw = cfg.get_string("no_raw", c.no_raw);
-    if (!c.no_raw.empty()) check_regex(cfg, "no_raw", c.no_raw);
+    // Empty leaves every raw topic in; otherwise a channel regex with the limits of `channels`.
+    if (!c.no_raw.empty())
+        if (const std::string why = runtime::Config::channel_regex_problem(c.no_raw); !why.empty()) cfg.fail("no_raw", why);
     c.address = cfg.get_string("address", c.address);
     std::error_code ec;
     (void)asio::ip::make_address(c.address, ec);
-    if (ec) cfg.fail("address", "not an IPv4 or IPv6 address: " + c.address);
+    // A NUL would end the text asio parses: "127.0.0.1\0junk" must not pass as 127.0.0.1.
+    if (ec || c.address.find('\0') != std::string::npos) cfg.fail("address", quoted_address(c.address) + " is not an IPv4 or IPv6 address");
     c.port = static_cast<int>(cfg.get_int("port", c.port, 1, 65535));
     c.max_clients = static_cast<int>(cfg.get_int("max_clients", c.max_clients, 1, 256));
     c.client_queue_bytes =

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "foxglove_node.hpp"
 #include "gps_node.hpp"
 #include "nodscan_node.hpp"
 #include "servo_node.hpp"
@@ -30,6 +31,7 @@ struct Case
 {
     std::string program, status_channel, config;
     std::vector<std::string> library_counters;
+    int lcm_port = 0;  // 0: the next port of the block from 7660
 };
 
 template <class... S>
@@ -79,16 +81,19 @@ TEST_CASE("status: every library counter of every daemon is in its first STATUS 
         {"ugv-pose", "STATUS_POSE", "", names_of(estimation::EstimatorCounters{}, runtime::StampCounters{})},
         {"ugv-terrain", "STATUS_TERRAIN", "",
          names_of(terrain::MapCounters{}, terrain_daemon::NodeCounters{}, runtime::StampCounters{})},
+        // 7667 is the stack's default port: ugv-traverse has one of its own tests' block.
         {"ugv-traverse", "STATUS_TRAVERSE", "",
-         names_of(traverse::TraverseCounters{}, traverse_daemon::NodeCounters{}, runtime::StampCounters{})},
+         names_of(traverse::TraverseCounters{}, traverse_daemon::NodeCounters{}, runtime::StampCounters{}), 7776},
+        // Its WebSocket port too is one of its own (TCP 18800).
+        {"ugv-foxglove", "STATUS_FOXGLOVE", "address = \"127.0.0.1\"\nport = 18800\n",
+         names_of(foxglove_daemon::NodeCounters{}, foxglove_daemon::ServerCounters{}, foxglove::ConverterCounters{}), 7685},
     };
     int port = 7660;
     for (const Case& c : cases) {
         SECTION(c.program)
         {
             REQUIRE(c.library_counters.size() >= 4);
-            // 7667 is the stack's default port: ugv-traverse has one of its own tests' block.
-            const daemon_status_t s = first_status(c, c.program == "ugv-traverse" ? 7776 : port);
+            const daemon_status_t s = first_status(c, c.lcm_port != 0 ? c.lcm_port : port);
             const std::set<std::string> published(s.counter_names.begin(), s.counter_names.end());
             for (const std::string& name : c.library_counters) {
                 INFO(c.program << " publishes " << name);

@@ -31,7 +31,7 @@ for path in ./usr/bin/ugv-dump ./usr/bin/ugv-foxglove ./usr/bin/ugv-logstat ./us
             ./usr/lib/systemd/system/ugv-lms@.service ./usr/lib/systemd/system/ugv-logger.service ./usr/lib/systemd/system/ugv-traverse.service ./usr/lib/systemd/system/ugv-foxglove.service \
             ./usr/lib/sysusers.d/ugv.conf ./usr/lib/sysctl.d/60-ugv-lcm.conf ./usr/lib/ugv/libugv-lcm-queue.so ./usr/share/doc/ugv/ARCHITECTURE.md \
             ./lib/udev/rules.d/60-ugv.rules ./etc/ugv/devices.conf ./usr/share/doc/ugv/copyright ./usr/share/doc/ugv/changelog.gz \
-            ./usr/share/ugv/lcmtypes/pose_t.lcm; do
+            ./usr/share/ugv/lcmtypes/pose_t.lcm ./usr/share/ugv/foxglove/ugv-layout.json; do
   grep -q " $path\$" <<<"$contents" && check ok "contains $path" || check no "missing $path"
 done
 if grep -q ' ./usr/share/java/ugv_lcmtypes.jar$' <<<"$contents" || ! command -v javac >/dev/null; then check ok "types jar (when a JDK built it)"

@@ -15,8 +15,8 @@ using namespace ugv;
 
 namespace {
 
-const std::vector<std::string> kDaemons = {"ugv-gps", "ugv-lms", "ugv-imu", "ugv-servo",
-                                           "ugv-nodscan", "ugv-pose", "ugv-terrain", "ugv-traverse"};
+const std::vector<std::string> kDaemons = {"ugv-gps",     "ugv-lms",  "ugv-imu",      "ugv-servo",   "ugv-nodscan",
+                                           "ugv-pose",    "ugv-terrain", "ugv-traverse", "ugv-foxglove"};
 
 struct Outcome
 {
@@ -122,6 +122,7 @@ TEST_CASE("every publish channel key is a channel name, every subscribe key a re
         {"ugv-pose", {"gps_fix_channel", "gps_velocity_channel", "imu_channel"}},
         {"ugv-terrain", {"points_channel", "pose_channel"}},
         {"ugv-traverse", {"map_channel"}},
+        {"ugv-foxglove", {"channels"}},
     };
     for (const auto& [d, keys] : subscribe) {
         for (const auto& key : keys) {
@@ -153,5 +154,38 @@ TEST_CASE("baud rates outside each device's set are refused, the servo's slcan b
         INFO(ok);
         test::write_file(file, std::string("transport = \"") + ok + "\"\n");
         CHECK(run(dir, "ugv-servo", file, {"--print-config"}).code == 0);
+    }
+}
+
+TEST_CASE("ugv-foxglove refuses each of its own keys set wrong, naming it")
+{
+    test::TempDir dir;
+    const std::string file = dir / "d.toml";
+    const auto refused = [&](const std::string& toml, const std::string& why) {
+        INFO(toml);
+        check_refused(run_with(dir, "ugv-foxglove", toml), file + ": " + why);
+    };
+    refused("address = \"vehicle\"\n", "address: 'vehicle' is not an IPv4 or IPv6 address");
+    refused("address = \"10.0.0.300\"\n", "address: '10.0.0.300' is not an IPv4 or IPv6 address");
+    // Neither a second line nor 900 kB echoed into the journal, nor a NUL that would end the text.
+    refused("address = \"127.0.0.1\\nX\"\n", "address: a value of 11 characters is not an IPv4 or IPv6 address");
+    refused("address = \"127.0.0.1\\u0000junk\"\n", "address: a value of 14 characters is not");
+    refused("address = \"" + std::string(900'000, '1') + "\"\n", "address: a value of 900000 characters is not");
+    refused("port = 0\n", "port: ");
+    refused("port = 65536\n", "port: ");
+    refused("port = \"8765\"\n", "port: ");
+    refused("max_clients = 0\n", "max_clients: ");
+    refused("client_queue_kb = 1\n", "client_queue_kb: ");
+    refused("health_timeout_s = nan\n", "health_timeout_s: ");
+    // An empty no_raw keeps every raw topic; a non-empty one is a channel regex like `channels`.
+    refused("no_raw = \"([\"\n", "no_raw: '([' is not a regex");
+    refused("no_raw = \"X{1,9999}\"\n", "no_raw: 'X{1,9999}': no {n,m}");
+    refused("no_raw = \"" + std::string(300, 'M') + "\"\n", "no_raw: is 300 characters, more than the 255");
+    refused("adress = \"0.0.0.0\"\n", "adress: ");  // a misspelt key is not ignored
+    for (const char* ok : {"no_raw = \"\"\n", "no_raw = \"TERRAIN_MAP|TRAVERSABILITY_MAP\"\n", "address = \"::1\"\n",
+                           "address = \"0.0.0.0\"\nport = 1\n"}) {
+        INFO(ok);
+        test::write_file(file, ok);
+        CHECK(run(dir, "ugv-foxglove", file, {"--print-config"}).code == 0);
     }
 }
