@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <memory>
 
 #include "ugv/candidate_arcs_t.hpp"
 #include "ugv/daemon_status_t.hpp"
@@ -120,7 +121,7 @@ private:
     {
         if (!std::isfinite(f)) return std::copy_n("null", 4, o);
         const auto bits = std::bit_cast<uint32_t>(f);
-        FloatText& slot = float_texts[(bits * 0x9E3779B1u) >> (32 - kFloatTextBits)];
+        FloatText& slot = float_texts()[(bits * 0x9E3779B1u) >> (32 - kFloatTextBits)];
         if (slot.bits != bits) {
             slot.bits = bits;
             slot.size = static_cast<uint8_t>(std::to_chars(slot.text, slot.text + sizeof slot.text, f).ptr - slot.text);
@@ -136,14 +137,20 @@ private:
         char text[16] = {};  // the longest is 15: "-1.17549435e-38"
     };
     static constexpr int kFloatTextBits = 12;
-    static thread_local std::array<FloatText, 1u << kFloatTextBits> float_texts;
+    using FloatTexts = std::array<FloatText, 1u << kFloatTextBits>;
+    // Per thread, from the heap when a thread first prints a float: 96 kB of static TLS would
+    // be set up in every thread of every program that links the reflection.
+    static FloatTexts& float_texts()
+    {
+        thread_local std::unique_ptr<FloatTexts> texts;
+        if (!texts) texts = std::make_unique<FloatTexts>();
+        return *texts;
+    }
 
     std::string& out_;
     std::vector<bool> first_;
     bool after_key_ = false;
 };
-
-thread_local std::array<JsonWriter::FloatText, 1u << JsonWriter::kFloatTextBits> JsonWriter::float_texts;
 
 using PrintFn = bool (*)(const void*, std::size_t, std::string&);
 using FitsFn = bool (*)(const uint8_t*, std::size_t, std::size_t&);
