@@ -107,6 +107,9 @@ def main():
                 lines.append("    " + value_expr(ftype, f"m.{fname}", package))
             else:
                 count = dim if dim.isdigit() else f"static_cast<std::size_t>(m.{dim})"
+                if ftype in SIZES:  # numbers: at once
+                    lines.append(f"    w.array(std::data(m.{fname}), std::min<std::size_t>({count}, std::size(m.{fname})));")
+                    continue
                 lines.append("    w.begin_array();")
                 lines.append(f"    for (std::size_t k = 0; k < {count} && k < std::size(m.{fname}); ++k) {{")
                 lines.append("        " + value_expr(ftype, f"m.{fname}[k]", package))
@@ -115,6 +118,12 @@ def main():
         lines.append("    w.end_object();")
         lines.append("}")
         lines.append("")
+    # One overload per type for message_json(), and the list of types it is instantiated for.
+    for package, name, _ in structs:
+        lines.append(f"[[maybe_unused]] static void json_message(JsonWriter& w, const {package}::{name}& m) "
+                     f"{{ json_{package}_{name}(w, m); }}")
+    lines.append("#define UGV_REFLECT_FOR_EACH_TYPE(X) " + " ".join(f"X({p}::{n})" for p, n, _ in structs))
+    lines.append("")
     # Field metadata: what a generic consumer (JSON Schema, Foxglove) needs to know of a type.
     for package, name, fields in structs:
         lines.append(f"static const std::vector<FieldInfo> fields_{package}_{name} = {{")

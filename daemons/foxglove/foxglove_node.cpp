@@ -64,7 +64,7 @@ void FoxgloveNode::on_message(const std::string& name, const uint8_t* data, std:
         return;
     }
     const auto log_time_ns = static_cast<uint64_t>(recv_utime < 0 ? 0 : recv_utime) * 1000;
-    bool checked = false;
+    bool checked = false, same_message = false;  // a map decodes once for all its watched topics
     for (const Topic& t : ch.topics) {
         // Status topics are converted even when unwatched: a Log is made on a change of
         // state, which the converter can only see from every message.
@@ -80,8 +80,9 @@ void FoxgloveNode::on_message(const std::string& name, const uint8_t* data, std:
             }
             checked = true;
         }
-        if (!converter_.convert(t.spec, data, size, json_)) continue;
-        if (!watched) continue;
+        const bool made = converter_.convert(t.spec, data, size, json_, same_message);
+        same_message = true;
+        if (!made || !watched) continue;
         ++counters_.encoded;
         server_.publish(t.id, log_time_ns, json_);
     }

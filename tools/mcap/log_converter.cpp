@@ -54,9 +54,12 @@ void LogConverter::add(const LogEvent& event)
         return;
     }
     const auto log_time = static_cast<uint64_t>(event.utime < 0 ? 0 : event.utime) * 1000;
+    bool same_message = false;  // the maps decode once for their raw and grid topics
     for (Topic& t : ch.topics) {
         // False also for a status without a change: no Log for it.
-        if (!converter_.convert(t.spec, event.data, event.size, json_)) continue;
+        const bool made = converter_.convert(t.spec, event.data, event.size, json_, same_message);
+        same_message = true;
+        if (!made) continue;
         writer_.write_message(t.channel_id, t.sequence++, log_time, log_time,
                               reinterpret_cast<const uint8_t*>(json_.data()), json_.size());
         ++counters_.messages;

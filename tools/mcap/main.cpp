@@ -92,10 +92,13 @@ int main(int argc, char** argv)
                    "channels whose own JSON topic is left out, keeping their Foxglove topics (e.g. the maps: "
                    "their grids carry every cell)");
     app.add_option("--compression", compression, "chunk compression: zstd, lz4 or none")->capture_default_str();
+    ugv::foxglove::McapOptions options;
+    app.add_option("--zstd-level", options.zstd_level,
+                   "zstd's level: higher packs tighter and slower, below 0 faster and looser (docs/foxglove.md)")
+        ->capture_default_str();
     app.add_flag("--quiet", quiet, "no progress on stderr");
     CLI11_PARSE(app, argc, argv);
 
-    ugv::foxglove::McapOptions options;
     if (!ugv::foxglove::parse_compression(compression, options.compression)) {
         std::fprintf(stderr, "ugv-mcap: --compression '%s': must be zstd, lz4 or none\n", compression.c_str());
         return 2;

@@ -12,6 +12,7 @@
 #include "ugv/point_cloud_t.hpp"
 #include "ugv/pose_t.hpp"
 #include "ugv/reflect.hpp"
+#include "ugv/reflect_message.hpp"
 #include "ugv/servo_state_t.hpp"
 #include "ugv/terrain_map_t.hpp"
 #include "ugv/traversability_map_t.hpp"
@@ -43,15 +44,14 @@ bool decode(const uint8_t* data, std::size_t size, Msg& msg)
 void put_f32(uint8_t* at, float v) { std::memcpy(at, &v, 4); }
 
 // The cells of an nx x ny map (cell (i, j) at i * ny + j) in Foxglove's order: row j (along
-// y), column i (along x). fill(cell bytes, k) writes map cell k.
+// y), column i (along x), into cells (its capacity reused). fill(cell bytes, k) writes map cell k.
 template <typename Fill>
-std::vector<uint8_t> grid_cells(int nx, int ny, uint32_t stride, Fill fill)
+void grid_cells(int nx, int ny, uint32_t stride, std::vector<uint8_t>& cells, Fill fill)
 {
     const auto x = static_cast<std::size_t>(nx), y = static_cast<std::size_t>(ny);
-    std::vector<uint8_t> cells(x * y * stride);
+    cells.assign(x * y * stride, 0);  // the padding bytes stay 0
     for (std::size_t i = 0; i < x; ++i)
         for (std::size_t j = 0; j < y; ++j) fill(cells.data() + (j * x + i) * stride, i * y + j);
-    return cells;
 }
 
 void fields(JsonOut& j, std::initializer_list<Packed> list)
@@ -86,12 +86,10 @@ void grid_header(JsonOut& j, const ugv::pose_t& pose, float residual_yaw, float 
     j.key("row_stride").integer(static_cast<int64_t>(nx) * cell_stride).key("cell_stride").integer(cell_stride);
 }
 
-bool terrain_grid(const uint8_t* data, std::size_t size, std::string& json)
+void terrain_grid(const ugv::terrain_map_t& m, std::vector<uint8_t>& cells, std::string& json)
 {
-    ugv::terrain_map_t m{};  // value-initialised (here and below): decode fills every field, the compiler cannot see it
-    if (!decode(data, size, m) || m.nx <= 0 || m.ny <= 0 || static_cast<int64_t>(m.nx) * m.ny != m.ncells) return false;
     constexpr uint32_t stride = 24;
-    const auto cells = grid_cells(m.nx, m.ny, stride, [&](uint8_t* at, std::size_t k) {
+    grid_cells(m.nx, m.ny, stride, cells, [&](uint8_t* at, std::size_t k) {
         put_f32(at, m.mean_z[k]);
         put_f32(at + 4, m.variance_z[k]);
         std::memcpy(at + 8, &m.count[k], 4);
@@ -106,15 +104,12 @@ bool terrain_grid(const uint8_t* data, std::size_t size, std::string& json)
                {"min", 16, float32}, {"age", 20, float32}});
     j.key("data").base64(cells.data(), cells.size());
     j.end_object();
-    return true;
 }
 
-bool traverse_grid(const uint8_t* data, std::size_t size, std::string& json)
+void traverse_grid(const ugv::traversability_map_t& m, std::vector<uint8_t>& cells, std::string& json)
 {
-    ugv::traversability_map_t m{};
-    if (!decode(data, size, m) || m.nx <= 0 || m.ny <= 0 || static_cast<int64_t>(m.nx) * m.ny != m.ncells) return false;
     constexpr uint32_t stride = 32;  // 7 floats, the class byte, 3 bytes of padding
-    const auto cells = grid_cells(m.nx, m.ny, stride, [&](uint8_t* at, std::size_t k) {
+    grid_cells(m.nx, m.ny, stride, cells, [&](uint8_t* at, std::size_t k) {
         put_f32(at, m.cost[k]);
         put_f32(at + 4, m.step_m[k]);
         put_f32(at + 8, m.drop_m[k]);
@@ -131,7 +126,12 @@ bool traverse_grid(const uint8_t* data, std::size_t size, std::string& json)
                {"roughness", 16, float32}, {"span", 20, float32}, {"certainty", 24, float32}, {"class", 28, int8}});
     j.key("data").base64(cells.data(), cells.size());
     j.end_object();
-    return true;
+}
+
+template <typename Map>
+bool map_fits(const Map& m)
+{
+    return m.nx > 0 && m.ny > 0 && static_cast<int64_t>(m.nx) * m.ny == m.ncells;
 }
 
 bool laser_scan(const uint8_t* data, std::size_t size, std::string& json)
@@ -303,6 +303,38 @@ int log_level(int state)
 
 }  // namespace
 
+// The maps of the last message, decoded once for its raw and its grid topic; their arrays'
+// capacity is kept from message to message.
+struct Converter::Decoded
+{
+    enum class Holds { nothing, terrain, traverse };
+    Holds holds = Holds::nothing;
+    ugv::terrain_map_t terrain{};
+    ugv::traversability_map_t traverse{};
+    std::vector<uint8_t> cells;  // a grid's cells before base64
+
+    template <typename Map>
+    const Map* get(Map& m, Holds kind, const uint8_t* data, std::size_t size, bool same_message)
+    {
+        if (same_message && holds == kind) return &m;
+        holds = Holds::nothing;
+        if (!decode(data, size, m)) return nullptr;
+        holds = kind;
+        return &m;
+    }
+    const ugv::terrain_map_t* terrain_map(const uint8_t* data, std::size_t size, bool same)
+    {
+        return get(terrain, Holds::terrain, data, size, same);
+    }
+    const ugv::traversability_map_t* traverse_map(const uint8_t* data, std::size_t size, bool same)
+    {
+        return get(traverse, Holds::traverse, data, size, same);
+    }
+};
+
+Converter::Converter() : decoded_(std::make_unique<Decoded>()) {}
+Converter::~Converter() = default;
+
 std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view type_name, bool with_raw)
 {
     if (!reflect::fields_of(type_name)) return {};
@@ -326,17 +358,39 @@ std::vector<TopicSpec> topics_for(std::string_view channel, std::string_view typ
     return out;
 }
 
-bool Converter::convert(const TopicSpec& spec, const uint8_t* data, std::size_t size, std::string& json)
+bool Converter::convert(const TopicSpec& spec, const uint8_t* data, std::size_t size, std::string& json,
+                        bool same_message)
 {
     bool ok = false;
+    Decoded& d = *decoded_;
+    if (!same_message) d.holds = Decoded::Holds::nothing;  // a new message: whatever it held is stale
     switch (spec.kind) {
     case TopicKind::raw: {
-        std::string type;
-        ok = reflect::to_json(data, size, type, json) == reflect::DecodeResult::ok && type == spec.type_name;
+        // A map's JSON from the decode its grid uses too; other types through the reflection.
+        if (spec.type_name == "ugv.terrain_map_t" && reflect::type_name_of(data, size) == spec.type_name) {
+            const auto* m = d.terrain_map(data, size, same_message);
+            if ((ok = m != nullptr)) reflect::message_json(*m, json);
+        } else if (spec.type_name == "ugv.traversability_map_t" && reflect::type_name_of(data, size) == spec.type_name) {
+            const auto* m = d.traverse_map(data, size, same_message);
+            if ((ok = m != nullptr)) reflect::message_json(*m, json);
+        } else {
+            std::string type;
+            ok = reflect::to_json(data, size, type, json) == reflect::DecodeResult::ok && type == spec.type_name;
+        }
         break;
     }
-    case TopicKind::terrain_grid: ok = terrain_grid(data, size, json); break;
-    case TopicKind::traverse_grid: ok = traverse_grid(data, size, json); break;
+    case TopicKind::terrain_grid:
+        if (const auto* m = d.terrain_map(data, size, same_message); m && map_fits(*m)) {
+            terrain_grid(*m, d.cells, json);
+            ok = true;
+        }
+        break;
+    case TopicKind::traverse_grid:
+        if (const auto* m = d.traverse_map(data, size, same_message); m && map_fits(*m)) {
+            traverse_grid(*m, d.cells, json);
+            ok = true;
+        }
+        break;
     case TopicKind::laser_scan: ok = laser_scan(data, size, json); break;
     case TopicKind::point_cloud: ok = point_cloud(data, size, json, laser_origin_); break;
     case TopicKind::pose_transform: ok = pose_message(data, size, json, true); break;

@@ -9,6 +9,7 @@
 #include "ugv/foxglove/topics.hpp"
 #include "ugv/pose_t.hpp"
 #include "ugv/reflect.hpp"
+#include "ugv/reflect_message.hpp"
 #include "ugv/terrain_map_t.hpp"
 #include "ugv_test/encoded.hpp"
 
@@ -192,4 +193,45 @@ TEST_CASE("daemon status as foxglove.Log only when the state or the error change
     CHECK(member(json, "level") == "3");
     CHECK_FALSE(convert());
     CHECK(conv.counters().unchanged == 2);
+}
+
+TEST_CASE("a map's raw and grid topics from one decode are those from two; the next map is decoded anew")
+{
+    auto map = [](float base) {
+        terrain_map_t m{};
+        m.resolution = 0.5f;
+        m.nx = 2;
+        m.ny = 2;
+        m.ncells = 4;
+        for (int k = 0; k < 4; ++k) {
+            const float v = base + 0.125f * static_cast<float>(k);
+            m.mean_z.push_back(v);
+            m.variance_z.push_back(v / 8);
+            m.count.push_back(k);
+            m.max_z.push_back(v + 1);
+            m.min_z.push_back(k == 2 ? NAN : v - 1);
+            m.age_s.push_back(0.25f);
+        }
+        return test::encoded(m);
+    };
+    const auto first = map(1), second = map(-3);
+    const auto topics = topics_for("TERRAIN_MAP", "ugv.terrain_map_t");
+    // Each topic on its own converter (one decode each): the reference.
+    auto alone = [&](const std::vector<uint8_t>& b, std::size_t t) {
+        Converter c;
+        std::string json;
+        REQUIRE(c.convert(topics[t], b.data(), b.size(), json));
+        return json;
+    };
+    Converter conv;
+    std::string raw, grid;
+    for (const auto* bytes : {&first, &second}) {
+        REQUIRE(conv.convert(topics[0], bytes->data(), bytes->size(), raw));
+        REQUIRE(conv.convert(topics[1], bytes->data(), bytes->size(), grid, true));
+        CHECK(raw == alone(*bytes, 0));
+        CHECK(grid == alone(*bytes, 1));
+        std::string type, dump;
+        REQUIRE(reflect::to_json(bytes->data(), bytes->size(), type, dump) == reflect::DecodeResult::ok);
+        CHECK(raw == dump);
+    }
 }

@@ -1,9 +1,13 @@
 #include <catch2/catch.hpp>
 
+#include <charconv>
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "ugv/reflect.hpp"
+#include "ugv/reflect_message.hpp"
+#include "ugv_test/encoded.hpp"
 #include "ugv_test/process.hpp"
 #include "ugv_test/sample_messages.hpp"
 
@@ -58,6 +62,54 @@ TEST_CASE("every ugv message prints as JSON with its values")
     CHECK(json["SAMPLE_traversability_map_t"].find("\"cell_class\":[2,0],\"cost\":[1,null]") != std::string::npos);
     CHECK(json["SAMPLE_candidate_arcs_t"].find("\"clear_distance_m\":[4.5,12]") != std::string::npos);
     CHECK(json["SAMPLE_candidate_arcs_t"].find("\"blocked\":[1,0],\"best\":1}") != std::string::npos);
+}
+
+TEST_CASE("a decoded message prints as its bytes do")
+{
+    const auto samples = encoded_samples();
+    auto check = [&](auto msg, const std::string& channel) {
+        INFO(channel);
+        const auto& bytes = samples.at(channel);
+        REQUIRE(msg.decode(bytes.data(), 0, static_cast<int>(bytes.size())) == static_cast<int>(bytes.size()));
+        std::string type, from_bytes, from_msg = "old text";
+        REQUIRE(reflect::to_json(bytes.data(), bytes.size(), type, from_bytes) == reflect::DecodeResult::ok);
+        reflect::message_json(msg, from_msg);
+        CHECK(from_msg == from_bytes);
+    };
+    check(terrain_map_t{}, "SAMPLE_terrain_map_t");
+    check(traversability_map_t{}, "SAMPLE_traversability_map_t");
+    check(laser_scan_t{}, "SAMPLE_laser_scan_t");
+    check(daemon_status_t{}, "SAMPLE_daemon_status_t");
+}
+
+TEST_CASE("float arrays print as to_chars prints each value, repeated values and all")
+{
+    // The printer keeps the text of recent floats (a cache keyed by their bits): values that
+    // repeat, values that share a slot, and more distinct values than it has slots.
+    laser_scan_t scan{};
+    scan.sensor_id = "front";
+    for (int k = 0; k < 20000; ++k) {
+        const float v = k % 3 == 0 ? 0.5f : k % 3 == 1 ? 0.001f * static_cast<float>(k) : -1e-7f * static_cast<float>(k % 97);
+        scan.ranges.push_back(k % 11 == 0 ? NAN : v);
+        scan.flags.push_back(0);
+    }
+    scan.ranges.push_back(-1.17549435e-38f);
+    scan.ranges.push_back(3.4028235e38f);
+    scan.flags.resize(scan.ranges.size());
+    scan.nranges = static_cast<int32_t>(scan.ranges.size());
+    std::string expected = "\"ranges\":[";
+    for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
+        if (k > 0) expected += ',';
+        char b[32];
+        expected += std::isfinite(scan.ranges[k]) ? std::string(b, std::to_chars(b, b + sizeof b, scan.ranges[k]).ptr) : "null";
+    }
+    expected += "]";
+    const auto bytes = test::encoded(scan);
+    for (int pass = 0; pass < 2; ++pass) {  // the second with the cache full of them
+        std::string type, json;
+        REQUIRE(reflect::to_json(bytes.data(), bytes.size(), type, json) == reflect::DecodeResult::ok);
+        CHECK(json.find(expected) != std::string::npos);
+    }
 }
 
 TEST_CASE("truncated, unknown and short inputs are told apart")

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -76,9 +77,17 @@ struct ConverterCounters
 class Converter
 {
 public:
+    Converter();
+    ~Converter();
+    Converter(const Converter&) = delete;
+    Converter& operator=(const Converter&) = delete;
+
     // Fills json for one message of spec's channel. False when the topic gets nothing for
     // this message (a status without a change) or the bytes do not decode (counted).
-    bool convert(const TopicSpec& spec, const uint8_t* data, std::size_t size, std::string& json);
+    // same_message: the bytes are those of the previous call, for another topic of the same
+    // channel (a map is then not decoded again for its grid).
+    bool convert(const TopicSpec& spec, const uint8_t* data, std::size_t size, std::string& json,
+                 bool same_message = false);
 
     const ConverterCounters& counters() const { return counters_; }
 
@@ -88,6 +97,8 @@ private:
         int state = -1;
         std::string last_error;
     };
+    struct Decoded;
+    std::unique_ptr<Decoded> decoded_;
     std::map<std::string, StatusSeen, std::less<>> status_;
     double laser_origin_[3] = {0, 0, 0};
     ConverterCounters counters_;
