@@ -62,10 +62,13 @@ elves=0 unstripped="" nodebug=""
 while IFS= read -r f; do
   head -c 4 "$f" | grep -q $'^\x7fELF' || continue
   elves=$((elves+1))
-  readelf -SW "$f" 2>/dev/null | grep -qE '\.debug_|\.symtab' && unstripped+=" ${f#"$work/root"}"
+  # readelf's output into a variable, not piped to grep -q: grep leaving early would end
+  # readelf with SIGPIPE mid-output, which pipefail reports as a failed check.
+  sections=$(readelf -SW "$f" 2>/dev/null)
+  grep -qE '\.debug_|\.symtab' <<<"$sections" && unstripped+=" ${f#"$work/root"}"
   id=$(readelf -n "$f" 2>/dev/null | sed -n 's/.*Build ID: //p')
   d="$work/dbgroot/usr/lib/debug/.build-id/${id:0:2}/${id:2}.debug"
-  { [ -n "$id" ] && [ -f "$d" ] && readelf -SW "$d" 2>/dev/null | grep -q '\.debug_info'; } || nodebug+=" ${f#"$work/root"}"
+  { [ -n "$id" ] && [ -f "$d" ] && grep -q '\.debug_info' <<<"$(readelf -SW "$d" 2>/dev/null)"; } || nodebug+=" ${f#"$work/root"}"
 done < <(find "$work/root" -type f)
 [ "$elves" -ge 10 ] && check ok "$elves ELF files in ugv" || check no "only $elves ELF files in ugv"
 [ -z "$unstripped" ] && check ok "every ELF file in ugv is stripped" || check no "not stripped:$unstripped"
