@@ -256,6 +256,9 @@ stop_clean() {
     verdict clean-stop "$([ -z "$bad" ] && [ ${#STACK_KILLED[@]} -eq 0 ]; echo $?)" "$what"
 }
 
+# bench_toml_vec FILE KEY: the three numbers of FILE's `KEY = [a, b, c]` line, as "a b c".
+bench_toml_vec() { awk -F'[][,= ]+' -v k="$2" '$1 == k { print $2, $3, $4 }' "$1"; }
+
 bench_end() {
     echo "$BENCH_PASSED passed, $BENCH_FAILED failed"
     [ "$BENCH_FAILED" -eq 0 ]

@@ -51,14 +51,14 @@ for f in "$laser" "$imu" "$antenna"; do
 done
 
 # The truth, from the runs' true-calibration folders; the defaults, from their configured ones.
-key() { awk -F'[][,= ]+' -v k="$2" '$1 == k { printf "[%s, %s, %s]", $2, $3, $4 }' "$1"; }
+key() { printf '[%s, %s, %s]' $(bench_toml_vec "$1" "$2"); }  # as a TOML array
 true_axis_xyz=$(key "$top/laser/run/true-calibration/nodscan.toml" tilt_axis_xyz_m)
 true_axis_rpy=$(key "$top/laser/run/true-calibration/nodscan.toml" tilt_axis_rpy_deg)
 true_imu=$(key "$top/imu-antenna/run/true-calibration/imu.toml" mount_rpy_deg)
 true_antenna=$(key "$top/imu-antenna/run/true-calibration/pose.toml" gps_antenna_m)
 # The laser's fit keeps the axis's x and y as configured (they do not move flat ground).
-read -r ax ay _ <<<"$(awk -F'[][,= ]+' '$1 == "tilt_axis_xyz_m" { print $2, $3 }' "$top/laser/run/calibration/nodscan.toml")"
-antenna_z=$(awk -F'[][,= ]+' '$1 == "gps_antenna_m" { print $4 }' "$top/imu-antenna/run/true-calibration/pose.toml")
+read -r ax ay _ <<<"$(bench_toml_vec "$top/laser/run/calibration/nodscan.toml" tilt_axis_xyz_m)"
+read -r _ _ antenna_z <<<"$(bench_toml_vec "$top/imu-antenna/run/true-calibration/pose.toml" gps_antenna_m)"
 est_axis_xyz=$(jq -r --arg x "$ax" --arg y "$ay" '"[\($x), \($y), \(.height_m.value)]"' "$laser")
 est_axis_rpy=$(jq -r '"[\(.roll_deg.value), \(.pitch_deg.value), \(.yaw_deg.value)]"' "$laser")
 est_imu=$(jq -r '"[\(.roll_deg.value), \(.pitch_deg.value), \(.yaw_deg.value)]"' "$imu")

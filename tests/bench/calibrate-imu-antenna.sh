@@ -33,9 +33,8 @@ fi
 
 # The truth: the scenario's true mounts (run/true-calibration/); the configured: what the
 # daemons were told (ugv-imu's config as run, ugv-pose's calibration file).
-read_key() { awk -F'[][,= ]+' -v k="$2" '$1 == k { print $2, $3, $4 }' "$1"; }
-read -r true_roll true_pitch true_yaw <<<"$(read_key "$STACK_OUT/run/true-calibration/imu.toml" mount_rpy_deg)"
-read -r true_x true_y _ <<<"$(read_key "$STACK_OUT/run/true-calibration/pose.toml" gps_antenna_m)"
+read -r true_roll true_pitch true_yaw <<<"$(bench_toml_vec "$STACK_OUT/run/true-calibration/imu.toml" mount_rpy_deg)"
+read -r true_x true_y _ <<<"$(bench_toml_vec "$STACK_OUT/run/true-calibration/pose.toml" gps_antenna_m)"
 echo "# truth: IMU mounting $true_roll, $true_pitch, $true_yaw deg; antenna x $true_x m, y $true_y m"
 
 calibrate() {  # calibrate WHAT ARGS...: the JSON line of ugv-calibrate WHAT LOG ARGS

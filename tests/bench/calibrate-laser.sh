@@ -33,9 +33,8 @@ fi
 
 # The truth: the scenario's true [laser] mount (the simulator writes it into run/true-calibration/).
 truth=$STACK_OUT/run/true-calibration/nodscan.toml
-read_truth() { awk -F'[][,= ]+' -v k="$1" '$1 == k { print $2, $3, $4 }' "$truth"; }
-read -r _ _ true_z <<<"$(read_truth tilt_axis_xyz_m)"
-read -r true_roll true_pitch _ <<<"$(read_truth tilt_axis_rpy_deg)"
+read -r _ _ true_z <<<"$(bench_toml_vec "$truth" tilt_axis_xyz_m)"
+read -r true_roll true_pitch _ <<<"$(bench_toml_vec "$truth" tilt_axis_rpy_deg)"
 echo "# truth: roll $true_roll deg, pitch $true_pitch deg, height $true_z m"
 
 calibrate() {  # calibrate OUT ARGS...: the JSON line of ugv-calibrate laser LOG ARGS
