@@ -93,14 +93,29 @@ int main(int argc, char** argv)
                    "their grids carry every cell)");
     app.add_option("--compression", compression, "chunk compression: zstd, lz4 or none")->capture_default_str();
     ugv::foxglove::McapOptions options;
-    app.add_option("--zstd-level", options.zstd_level,
+    auto* zstd_level = app.add_option("--zstd-level", options.zstd_level,
                    "zstd's level: higher packs tighter and slower, below 0 faster and looser (docs/foxglove.md)")
         ->capture_default_str();
     app.add_flag("--quiet", quiet, "no progress on stderr");
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::fprintf(stderr, "ugv-mcap: %s (see --help)\n", e.what());
+        return 2;
+    }
 
     if (!ugv::foxglove::parse_compression(compression, options.compression)) {
         std::fprintf(stderr, "ugv-mcap: --compression '%s': must be zstd, lz4 or none\n", compression.c_str());
+        return 2;
+    }
+    if (zstd_level->count() > 0 && options.compression != ugv::foxglove::Compression::zstd) {
+        std::fprintf(stderr, "ugv-mcap: --zstd-level is for --compression zstd, not %s\n", compression.c_str());
+        return 2;
+    }
+    if (options.zstd_level < ugv::foxglove::zstd_min_level() || options.zstd_level > ugv::foxglove::zstd_max_level()) {
+        std::fprintf(stderr, "ugv-mcap: --zstd-level %d: must be %d to %d (libzstd's levels)\n", options.zstd_level,
+                     ugv::foxglove::zstd_min_level(), ugv::foxglove::zstd_max_level());
         return 2;
     }
     std::regex re, no_raw_re("$^");

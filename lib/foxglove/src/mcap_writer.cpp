@@ -1,7 +1,6 @@
 #include "ugv/foxglove/mcap_writer.hpp"
 
 #include <lz4frame.h>
-#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -82,6 +81,9 @@ bool parse_compression(std::string_view name, Compression& out)
     return true;
 }
 
+int zstd_min_level() { return ZSTD_minCLevel(); }
+int zstd_max_level() { return ZSTD_maxCLevel(); }
+
 std::string_view compression_name(Compression c)
 {
     switch (c) {
@@ -90,18 +92,6 @@ std::string_view compression_name(Compression c)
     case Compression::none: break;
     }
     return "";
-}
-
-uint32_t crc32(const uint8_t* data, std::size_t size, uint32_t crc)
-{
-    // zlib's crc32 takes uInt lengths: feed it in pieces.
-    while (size > 0) {
-        const std::size_t n = std::min<std::size_t>(size, 1u << 30);
-        crc = static_cast<uint32_t>(::crc32(crc, data, static_cast<uInt>(n)));
-        data += n;
-        size -= n;
-    }
-    return crc;
 }
 
 struct McapWriter::Impl

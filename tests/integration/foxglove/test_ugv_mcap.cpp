@@ -21,7 +21,7 @@ std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::c
 
 }  // namespace
 
-TEST_CASE("ugv-mcap: a missing, empty or foreign log, a bad regex or compression: one line, exit 2")
+TEST_CASE("ugv-mcap: a missing, empty or foreign log, a bad regex, compression or level: one line, exit 2")
 {
     test::TempDir dir;
     const std::string log = dir / "run.lcm";
@@ -38,6 +38,15 @@ TEST_CASE("ugv-mcap: a missing, empty or foreign log, a bad regex or compression
     CHECK(lines(test::read_file(dir / "e")) == 1);
     CHECK(mcap(dir, {log, dir / "o.mcap", "--compression", "gzip"}) == 2);
     CHECK(lines(test::read_file(dir / "e")) == 1);
+    for (const char* level : {"23", "-200000", "x"}) {
+        CHECK(mcap(dir, {log, dir / "o.mcap", "--zstd-level", level}) == 2);
+        CHECK(lines(test::read_file(dir / "e")) == 1);
+    }
+    CHECK(mcap(dir, {log, dir / "o.mcap", "--compression", "lz4", "--zstd-level", "3"}) == 2);
+    CHECK(test::read_file(dir / "e") == "ugv-mcap: --zstd-level is for --compression zstd, not lz4\n");
+    CHECK(mcap(dir, {log, dir / "o.mcap", "--no-such-flag"}) == 2);
+    CHECK(lines(test::read_file(dir / "e")) == 1);
+    REQUIRE(mcap(dir, {log, dir / "fast.mcap", "--zstd-level", "-5", "--quiet"}) == 0);
     CHECK(mcap(dir, {log, dir / "no-such-dir/o.mcap"}) == 2);
     CHECK(test::read_file(dir / "e").find("cannot write") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(dir / "o.mcap"));

@@ -85,6 +85,30 @@ TEST_CASE("crc32 is the IEEE CRC-32 (check value of \"123456789\")")
     CHECK(crc32(reinterpret_cast<const uint8_t*>(s.data()) + 4, 5, part) == 0xCBF43926u);
 }
 
+TEST_CASE("crc32 equals zlib's at every length, alignment and starting value")
+{
+    // 4100 bytes: several 64-byte folds, the 16-byte tail loop and the ragged end.
+    std::vector<uint8_t> bytes(4100);
+    uint32_t x = 0x12345678u;
+    for (auto& b : bytes) {
+        x = x * 1664525u + 1013904223u;
+        b = static_cast<uint8_t>(x >> 24);
+    }
+    for (const uint32_t start : {0u, 0xFFFFFFFFu, 0xCBF43926u}) {
+        for (std::size_t offset = 0; offset < 16; offset += 5) {
+            for (std::size_t size = 0; size <= 300; ++size) {
+                INFO("start " << start << " offset " << offset << " size " << size);
+                REQUIRE(crc32(bytes.data() + offset, size, start) == crc32_reference(bytes.data() + offset, size, start));
+            }
+            REQUIRE(crc32(bytes.data() + offset, 4000, start) == crc32_reference(bytes.data() + offset, 4000, start));
+        }
+    }
+    // A buffer of 0xFF and one of zeros: the folds' carries and the empty polynomial.
+    const std::vector<uint8_t> ones(1024, 0xFF), zeros(1024, 0);
+    CHECK(crc32(ones.data(), ones.size()) == crc32_reference(ones.data(), ones.size()));
+    CHECK(crc32(zeros.data(), zeros.size()) == crc32_reference(zeros.data(), zeros.size()));
+}
+
 TEST_CASE("an empty file: magic, header, data end, summary, footer, magic")
 {
     VectorSink sink;

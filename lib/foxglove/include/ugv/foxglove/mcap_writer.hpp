@@ -35,6 +35,9 @@ enum class Compression { none, zstd, lz4 };
 
 // "zstd", "lz4", "none" -> the compression; false for anything else.
 bool parse_compression(std::string_view name, Compression& out);
+// The levels the linked libzstd takes (negative ones are its fast levels).
+int zstd_min_level();
+int zstd_max_level();
 // The compression's name in a chunk record ("" for none).
 std::string_view compression_name(Compression c);
 
@@ -84,6 +87,9 @@ private:
 };
 
 // CRC-32 (IEEE 802.3, as zlib computes it), the checksum MCAP uses.
+// Folded with carry-less multiplications where the CPU has them (crc32.cpp).
 uint32_t crc32(const uint8_t* data, std::size_t size, uint32_t crc = 0);
+// zlib's, a word at a time: the reference crc32 is tested against.
+uint32_t crc32_reference(const uint8_t* data, std::size_t size, uint32_t crc = 0);
 
 }  // namespace ugv::foxglove
