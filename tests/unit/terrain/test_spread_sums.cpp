@@ -1,6 +1,7 @@
-// Section 3.5 in summed-area form (src/spread_sums.hpp) against the cell-by-cell reference
-// (MapConfig::spread_exact): the same map up to rounding, on a synthetic cloud with sigmas
-// from 0.05 to 1 m and on a drive of nodding scans with the 3DM-GX1's 2 deg.
+// Section 3.5 in summed-area form (src/spread_sums.hpp), full and centred, against the
+// cell-by-cell reference (SpreadForm::exact): the same map up to rounding, on a synthetic
+// cloud with sigmas from 0.05 to 1 m and on a drive of nodding scans with the 3DM-GX1's 2 deg
+// (the centred form there against the truth: rotations bin its cells differently).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -206,13 +207,12 @@ TEST_CASE("summed-area spreading gives the exact spreading's map on a drive with
 
 namespace {
 
-// Two maps of the same cloud cell by cell where they may bin differently: the cells known in
-// one only, and over the cells known in both, those beyond the summed-area tolerance and the
-// RMS of the mean's difference.
+// Two maps of the same drive cell by cell where they may bin differently: the cells known in
+// one only, and the RMS of the mean's difference over the cells known in both.
 struct Spread
 {
-    int both = 0, one_only = 0, beyond = 0;
-    double rms_mean = 0.0, worst_mean = 0.0;
+    int both = 0, one_only = 0;
+    double rms_mean = 0.0;
 };
 
 Spread spread_between(const MapSnapshot& a, const MapSnapshot& b)
@@ -225,13 +225,8 @@ Spread spread_between(const MapSnapshot& a, const MapSnapshot& b)
         if (ka != kb) ++d.one_only;
         if (!ka || !kb) continue;
         ++d.both;
-        const double dm = std::abs(static_cast<double>(a.mean_z_m[k]) - b.mean_z_m[k]);
-        const double dv = std::abs(static_cast<double>(a.variance_z_m2[k]) - b.variance_z_m2[k]);
+        const double dm = static_cast<double>(a.mean_z_m[k]) - b.mean_z_m[k];
         sum2 += dm * dm;
-        d.worst_mean = std::max(d.worst_mean, dm);
-        if (dm > kMeanTolerance || dv > kVarianceTolerance + kVarianceRelative * a.variance_z_m2[k] ||
-            a.count[k] != b.count[k])
-            ++d.beyond;
     }
     d.rms_mean = d.both > 0 ? std::sqrt(sum2 / d.both) : 0.0;
     return d;
@@ -239,12 +234,56 @@ Spread spread_between(const MapSnapshot& a, const MapSnapshot& b)
 
 }  // namespace
 
-TEST_CASE("centred spreading against the exact spreading on a drive with wraps and rotations")
+// The drive's world: a 0.3 slope along x, boxes 0.5 m tall every 6 m. The RMS of a map's
+// means against it over its known cells, leaving out those within 0.3 m of a box's edge (as
+// ugv-eval compare --exclude-edges 0.3).
+double rmse_against_truth(const MapSnapshot& s)
 {
+    const Eigen::Vector3d forward = s.pose.orientation * Eigen::Vector3d::UnitX();
+    const double map_yaw = std::atan2(forward.y(), forward.x()) - s.residual_yaw_rad;
+    const double c = std::cos(map_yaw), sn = std::sin(map_yaw);
+    const auto near_edge = [](double w) {
+        const double f = std::fmod(std::abs(w), 6.0);
+        return f < 0.3 || std::abs(f - 0.6) < 0.3 || f > 5.7;
+    };
+    double sum2 = 0.0;
+    int n = 0;
+    for (int i = 0; i < s.nx; ++i) {
+        for (int j = 0; j < s.ny; ++j) {
+            const float mean = s.mean_z_m[static_cast<std::size_t>(i * s.ny + j)];
+            if (std::isnan(mean)) continue;
+            const double mx = s.origin_x_m + (i + 0.5) * s.resolution_m, my = s.origin_y_m + (j + 0.5) * s.resolution_m;
+            const double wx = s.pose.position_m.x() + c * mx - sn * my, wy = s.pose.position_m.y() + sn * mx + c * my;
+            if (near_edge(wx) || near_edge(wy)) continue;
+            const bool box = std::fmod(std::abs(wx), 6.0) < 0.6 && std::fmod(std::abs(wy), 6.0) < 0.6;
+            const double truth = 0.3 * wx + (box ? 0.5 : 0.0);
+            sum2 += (mean - truth) * (mean - truth);
+            ++n;
+        }
+    }
+    REQUIRE(n > 1000);
+    return std::sqrt(sum2 / n);
+}
+
+TEST_CASE("centred spreading on a drive with wraps and rotations: the map against the truth")
+{
+    // Before a rotation the centred form's cells are the exact ones (the synthetic case
+    // above). A rotation bins a cell by its samples' mean position, where the centred shares
+    // sit at their cells' centres; on this 0.3 slope a cell binned one over reads 6 cm off,
+    // so the map drifts from the exact one (measured: RMS 2.5 cm over the cells both know)
+    // and from the truth: its RMSE is held within 6 mm of the exact map's (measured 4.2 mm
+    // worse, 49.5 against 53.6 mm; on the demo's flatter ground within 0.32 mm).
     const MapSnapshot exact = drive(SpreadForm::exact, 150);
     const MapSnapshot centred = drive(SpreadForm::centred, 150);
     const Spread d = spread_between(exact, centred);
-    WARN("both " << d.both << " one only " << d.one_only << " beyond " << d.beyond << " rms mean " << d.rms_mean
-                 << " worst mean " << d.worst_mean);
+    const double rmse_exact = rmse_against_truth(exact), rmse_centred = rmse_against_truth(centred);
+    INFO("cells known in both " << d.both << ", in one only " << d.one_only << ", RMS mean difference " << d.rms_mean
+                                << " m; RMSE against the truth " << rmse_exact << " m exact, " << rmse_centred
+                                << " m centred");
     CHECK(d.both > 3000);
+    CHECK(d.one_only < d.both / 3);
+    CHECK(d.rms_mean < 0.04);
+    CHECK(rmse_centred < rmse_exact + 0.006);
+    // The summed-area form is the exact one against the truth too.
+    CHECK(rmse_against_truth(drive(SpreadForm::summed_area, 150)) == Approx(rmse_exact).margin(1e-4));
 }
