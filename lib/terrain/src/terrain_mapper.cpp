@@ -335,17 +335,22 @@ void TerrainMapper::move_world(const Pose& pose)
 template <typename Grid>
 void TerrainMapper::spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms)
 {
-    if (!spread_sums_ && !spread_centred_) {
+    if (spread_sums_)
+        spread_summed(*spread_sums_, grid, x, y, z, variance_m2, w, t_ms);
+    else if (spread_centred_)
+        spread_summed(*spread_centred_, grid, x, y, z, variance_m2, w, t_ms);
+    else
         spread_exact(grid, x, y, z, variance_m2, w, t_ms);
-        return;
-    }
+}
+
+template <typename Sums, typename Grid>
+void TerrainMapper::spread_summed(Sums& sums, Grid& grid, float x, float y, double z, float variance_m2, float w,
+                                  TimeTick t_ms)
+{
     const float inv_g = static_cast<float>(1.0 / config_.grid_size_m);
     const float half_width = std::min(std::sqrt(variance_m2) * inv_g, static_cast<float>(config_.spread_max_cells));
-    const float cx = x * inv_g, cy = (y - static_cast<float>(grid.y_min_m())) * inv_g;
-    const float g = static_cast<float>(config_.grid_size_m), zf = static_cast<float>(z);
-    const bool added = spread_centred_ ? spread_centred_->add(cx, cy, half_width, w, g, zf, t_ms)
-                                       : spread_sums_->add(cx, cy, half_width, w, g, zf, t_ms);
-    if (!added) {
+    if (!sums.add(x * inv_g, (y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, w,
+                  static_cast<float>(config_.grid_size_m), static_cast<float>(z), t_ms)) {
         ++counters_.rejected_outside_map;
         return;
     }

@@ -175,6 +175,8 @@ private:
     // it cell by cell, the readable reference the summed-area forms are tested against.
     template <typename Grid>
     void spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
+    template <typename Sums, typename Grid>
+    void spread_summed(Sums& sums, Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     template <typename Grid>
     void spread_exact(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     Eigen::Vector2d reference_world(const Pose& pose) const;
