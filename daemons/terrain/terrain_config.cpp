@@ -61,7 +61,12 @@ TerrainConfig read_config(runtime::Config& cfg)
     }
     m.spread = cfg.get_bool("spread", true);
     m.spread_max_cells = static_cast<int>(cfg.get_int("spread_max_cells", 2, 1, terrain::kMaxSpreadCells));
-    m.spread_exact = cfg.get_bool("spread_exact", false);
+    const std::string form = cfg.get_enum("spread_form", "summed_area", {"exact", "summed_area", "centred"});
+    m.spread_form = form == "exact" ? terrain::SpreadForm::exact
+                    : form == "centred" ? terrain::SpreadForm::centred
+                                        : terrain::SpreadForm::summed_area;
+    // The older key: true is the reference, whatever spread_form says.
+    if (cfg.get_bool("spread_exact", false)) m.spread_form = terrain::SpreadForm::exact;
     m.min_variance_m2 = cfg.get_double("min_variance_m2", 1e-6, 1e-12, 1.0);
     m.pose_history_us = static_cast<int64_t>(std::llround(cfg.get_double("pose_history_s", 2.0, 0.1, 60.0) * 1e6));
     m.max_interpolation_span_s = cfg.get_double("max_interpolation_span_s", 0.1, 0.001, 1.0);

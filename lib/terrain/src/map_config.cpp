@@ -22,6 +22,8 @@ void MapConfig::validate() const
     if (!(std::isfinite(reference_x_m) && std::isfinite(reference_y_m))) fail("reference_x_m", "must be finite");
     if (statistics != StatisticsKind::variance_weighted && statistics != StatisticsKind::classical)
         fail("statistics", "unknown kind");
+    if (spread_form != SpreadForm::exact && spread_form != SpreadForm::summed_area && spread_form != SpreadForm::centred)
+        fail("spread_form", "unknown form");
     if (mode != MapMode::egocentric && mode != MapMode::world_aligned) fail("mode", "unknown mode");
 }
 

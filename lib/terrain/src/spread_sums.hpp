@@ -19,6 +19,12 @@
 // exact path (TerrainMapper, spread_exact) up to rounding: the corners and running sums are
 // in double, the fractions in float as the exact path takes them.
 //
+// The centred form (SpreadSumsOf<4>, spread_form = centred) keeps the first four components
+// only: each share sits at the centre of its cell, not at the centroid of its part, so a
+// cell's weight, mean, variance, count and extremes are the exact path's up to rounding and
+// only the x/y sums of the footprint's edge cells differ (what a rotation bins by). Its
+// corner record is one 4-double vector, half the stores and running sums of the full one.
+//
 // What is not a sum: a share's time. Every cell a pending share touches takes the newest
 // time of the pending shares at the flush (the map flushes before it moves and before it is
 // read, so the error is below one pose period while driving, one publish period standing).
@@ -31,6 +37,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "cell_fusion.hpp"
@@ -40,20 +47,27 @@
 
 namespace ugv::terrain::detail {
 
-class SpreadSums
+// GCC sizes a vector type only from a constant, not from a template argument.
+using CornerRecord8 = double __attribute__((vector_size(8 * sizeof(double))));
+using CornerRecord4 = double __attribute__((vector_size(4 * sizeof(double))));
+
+// K: the components of a corner record, 8 (all the exact path's sums) or 4 (centred).
+template <int K>
+class SpreadSumsOf
 {
 public:
     // The components of a corner record (and of a cell's total after the running sums).
     static constexpr int kW = 0, kWz = 1, kWz2 = 2, kN = 3, kX1 = 4, kX2 = 5, kY1 = 6, kY2 = 7;
-    using Record = double __attribute__((vector_size(64)));
-    static_assert(kCornerComponents == 8 && sizeof(Record) == 8 * sizeof(double));
+    static constexpr bool kCentred = K == kCentredCornerComponents;
+    using Record = std::conditional_t<kCentred, CornerRecord4, CornerRecord8>;
+    static_assert((K == kCornerComponents || kCentred) && sizeof(Record) == K * sizeof(double));
 
-    SpreadSums(int rows, int columns)
+    SpreadSumsOf(int rows, int columns)
         : rows_(rows),
           columns_(columns),
           stride_(static_cast<std::size_t>(columns) + 2),
           words_((stride_ + 63) / 64),
-          corner_storage_(((static_cast<std::size_t>(rows) + 3) * stride_ + 1) * kCornerComponents),
+          corner_storage_(((static_cast<std::size_t>(rows) + 3) * stride_ + 1) * K),
           extremes_(static_cast<std::size_t>(rows) * static_cast<std::size_t>(columns)),
           spans_((static_cast<std::size_t>(rows) + 2) * words_),
           active_(words_)
@@ -64,8 +78,8 @@ public:
         corners_ = static_cast<Record*>(std::align(sizeof(Record), sizeof(Record), p, space));
         running_ = corners_ + (static_cast<std::size_t>(rows) + 2) * stride_;
     }
-    SpreadSums(const SpreadSums&) = delete;
-    SpreadSums& operator=(const SpreadSums&) = delete;
+    SpreadSumsOf(const SpreadSumsOf&) = delete;
+    SpreadSumsOf& operator=(const SpreadSumsOf&) = delete;
 
     bool pending() const { return pending_; }
 
@@ -78,7 +92,7 @@ public:
         if (!axis(cx, h, rows_, g, ax) || !axis(cy, h, columns_, g, ay)) return false;
         if (!pending_) {
             pending_ = true;
-            corners_kernel_ = kernels().spread_corners;  // once per pending set, not per point
+            corners_kernel_ = kCentred ? kernels().spread_corners_centred : kernels().spread_corners;  // once per pending set, not per point
             z0_ = z;
             newest_ms_ = t_ms;
             row_lo_ = ax.at[0];
@@ -207,6 +221,7 @@ private:
         out.count[1] = 0.0;
         out.count[2] = qh > 0.0 ? 0.0 : -1.0;
         out.count[3] = qh > 0.0 ? -1.0 : 0.0;
+        if constexpr (kCentred) return true;
         // The integral of (x - cell centre) over the part of the edge cell from p on is
         // q (1 - q) / 2 (q = frac p); interior cells are whole, their integral 0.
         const double gd = static_cast<double>(g);
@@ -267,10 +282,12 @@ private:
             const double d = z0_ - static_cast<double>(b.z_ref_m);  // z0 about the stored reference
             b.z_wz = static_cast<float>(total[kWz] + w * d);
             b.z_wz2 = static_cast<float>(std::max(0.0, total[kWz2] + 2.0 * d * total[kWz] + w * d * d));
-            b.x_wx = static_cast<float>(total[kX1]);
-            b.x_wx2 = static_cast<float>(total[kX2]);
-            b.y_wy = static_cast<float>(total[kY1]);
-            b.y_wy2 = static_cast<float>(total[kY2]);
+            if constexpr (!kCentred) {
+                b.x_wx = static_cast<float>(total[kX1]);
+                b.x_wx2 = static_cast<float>(total[kX2]);
+                b.y_wy = static_cast<float>(total[kY1]);
+                b.y_wy2 = static_cast<float>(total[kY2]);
+            }
             if (!a.empty()) add_sums(b, a);
             a = b;
         } else {
@@ -281,10 +298,12 @@ private:
             a.w = static_cast<float>(a.w + w);
             a.z_wz = static_cast<float>(a.z_wz + wz);
             a.z_wz2 = static_cast<float>(a.z_wz2 + (total[kWz2] + d * (wz + total[kWz])));
-            a.x_wx = static_cast<float>(a.x_wx + total[kX1]);
-            a.x_wx2 = static_cast<float>(a.x_wx2 + total[kX2]);
-            a.y_wy = static_cast<float>(a.y_wy + total[kY1]);
-            a.y_wy2 = static_cast<float>(a.y_wy2 + total[kY2]);
+            if constexpr (!kCentred) {
+                a.x_wx = static_cast<float>(a.x_wx + total[kX1]);
+                a.x_wx2 = static_cast<float>(a.x_wx2 + total[kX2]);
+                a.y_wy = static_cast<float>(a.y_wy + total[kY1]);
+                a.y_wy2 = static_cast<float>(a.y_wy2 + total[kY2]);
+            }
         }
         CellTally& tally = cells.tallies[at];
         tally.count += static_cast<uint32_t>(total[kN] + 0.5);  // a whole number >= 1, exact in double
@@ -309,5 +328,8 @@ private:
     TimeTick newest_ms_ = kNoTime;
     int row_lo_ = 0, row_hi_ = 0;  // the pending corners' rows
 };
+
+using SpreadSums = SpreadSumsOf<kCornerComponents>;
+using SpreadSumsCentred = SpreadSumsOf<kCentredCornerComponents>;
 
 }  // namespace ugv::terrain::detail

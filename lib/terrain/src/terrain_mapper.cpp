@@ -92,19 +92,30 @@ TerrainMapper::TerrainMapper(const MapConfig& config)
         world_ = std::make_unique<WorldGrid>(static_cast<int>(std::ceil(side_m / config_.grid_size_m)),
                                              config_.grid_size_m);
     }
-    if (config_.spread && !config_.spread_exact) {
-        const int rows = ego_ ? ego_->nx() : world_->nx(), columns = ego_ ? ego_->ny() : world_->ny();
+    const int rows = ego_ ? ego_->nx() : world_->nx(), columns = ego_ ? ego_->ny() : world_->ny();
+    if (config_.spread && config_.spread_form == SpreadForm::summed_area)
         spread_sums_ = std::make_unique<detail::SpreadSums>(rows, columns);
-    }
+    if (config_.spread && config_.spread_form == SpreadForm::centred)
+        spread_centred_ = std::make_unique<detail::SpreadSumsCentred>(rows, columns);
 }
 
 void TerrainMapper::flush_spread() const
 {
-    if (!spread_sums_ || !spread_sums_->pending()) return;
-    if (ego_)
-        spread_sums_->flush(*ego_);
-    else
-        spread_sums_->flush(*world_);
+    auto flush = [this](auto& sums) {
+        if (!sums || !sums->pending()) return;
+        if (ego_)
+            sums->flush(*ego_);
+        else
+            sums->flush(*world_);
+    };
+    flush(spread_sums_);
+    flush(spread_centred_);
+}
+
+void TerrainMapper::discard_spread()
+{
+    if (spread_sums_) spread_sums_->discard();
+    if (spread_centred_) spread_centred_->discard();
 }
 
 TerrainMapper::~TerrainMapper() = default;
@@ -113,7 +124,7 @@ TerrainMapper& TerrainMapper::operator=(TerrainMapper&&) noexcept = default;
 
 void TerrainMapper::clear()
 {
-    if (spread_sums_) spread_sums_->discard();
+    discard_spread();
     if (ego_) ego_->clear();
     if (world_) world_->clear();
     history_.clear();
@@ -197,7 +208,7 @@ void TerrainMapper::move_egocentric(const Pose& pose)
     Eigen::Vector2d local = rotation_2d(-anchor_yaw_rad_) * (ref - anchor_m_);
     if (local.norm() > std::max(config_.extent_x_m, config_.extent_y_m)) {
         // A jump larger than the map (GPS reacquired, datum change): nothing in it still holds.
-        if (spread_sums_) spread_sums_->discard();
+        discard_spread();
         ego_->clear();
         anchor_m_ = ref;
         anchor_yaw_rad_ = yaw;
@@ -324,14 +335,22 @@ void TerrainMapper::move_world(const Pose& pose)
 template <typename Grid>
 void TerrainMapper::spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms)
 {
-    if (!spread_sums_) {
+    if (spread_sums_)
+        spread_summed(*spread_sums_, grid, x, y, z, variance_m2, w, t_ms);
+    else if (spread_centred_)
+        spread_summed(*spread_centred_, grid, x, y, z, variance_m2, w, t_ms);
+    else
         spread_exact(grid, x, y, z, variance_m2, w, t_ms);
-        return;
-    }
+}
+
+template <typename Sums, typename Grid>
+void TerrainMapper::spread_summed(Sums& sums, Grid& grid, float x, float y, double z, float variance_m2, float w,
+                                  TimeTick t_ms)
+{
     const float inv_g = static_cast<float>(1.0 / config_.grid_size_m);
     const float half_width = std::min(std::sqrt(variance_m2) * inv_g, static_cast<float>(config_.spread_max_cells));
-    if (!spread_sums_->add(x * inv_g, (y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, w,
-                           static_cast<float>(config_.grid_size_m), static_cast<float>(z), t_ms)) {
+    if (!sums.add(x * inv_g, (y - static_cast<float>(grid.y_min_m())) * inv_g, half_width, w,
+                  static_cast<float>(config_.grid_size_m), static_cast<float>(z), t_ms)) {
         ++counters_.rejected_outside_map;
         return;
     }

@@ -132,9 +132,12 @@ TEST_CASE("ugv-terrain --replay is deterministic and its map shows the box")
 
 TEST_CASE("ugv-terrain refuses a bad key with one line and exit status 2")
 {
+    // A value out of range, and a spreading form that does not exist.
+    const auto [line, key] = GENERATE(table<std::string, std::string>(
+        {{"publish_hz = 50.0", "publish_hz"}, {"spread_form = \"levels\"", "spread_form"}}));
     test::TempDir dir;
     const std::string config = dir / "terrain.toml";
-    test::write_file(config, "publish_hz = 50.0\n");
+    test::write_file(config, line + "\n");
     test::SyntheticDrive drive;
     drive.duration_s = 0.5;
     drive.write_log(dir / "drive.log");
@@ -142,5 +145,5 @@ TEST_CASE("ugv-terrain refuses a bad key with one line and exit status 2")
                               dir / "out.log"},
                              dir / "stdout.txt", dir / "stderr.txt", 30.0);
     CHECK(rc == 2);
-    CHECK(test::read_file(dir / "stderr.txt").find("publish_hz") != std::string::npos);
+    CHECK(test::read_file(dir / "stderr.txt").find(key) != std::string::npos);
 }

@@ -133,10 +133,25 @@ BENCHMARK(BM_Fusion_Default_GX1_2deg_Flush16);
 void BM_Fusion_Default_GX1_2deg_Exact(benchmark::State& state)
 {
     MapConfig c;
-    c.spread_exact = true;
+    c.spread_form = SpreadForm::exact;
     run_fusion(state, c, 2.0);
 }
 BENCHMARK(BM_Fusion_Default_GX1_2deg_Exact);
+
+// The same with each summed-area form named (the default is one of them).
+void run_spread_form(benchmark::State& state, SpreadForm form)
+{
+    MapConfig c;
+    c.spread_form = form;
+    run_fusion(state, c, 2.0, 13.3e-3, 3);
+}
+void BM_Fusion_Default_GX1_2deg_SummedArea(benchmark::State& state)
+{
+    run_spread_form(state, SpreadForm::summed_area);
+}
+BENCHMARK(BM_Fusion_Default_GX1_2deg_SummedArea);
+void BM_Fusion_Default_GX1_2deg_Centred(benchmark::State& state) { run_spread_form(state, SpreadForm::centred); }
+BENCHMARK(BM_Fusion_Default_GX1_2deg_Centred);
 
 // 6 deg: every point spreads (the other end of the mix of the 2 deg case).
 void BM_Fusion_Default_AllSpread6deg(benchmark::State& state) { run_fusion(state, MapConfig{}, 6.0, 13.3e-3, 3); }

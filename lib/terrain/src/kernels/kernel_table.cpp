@@ -11,10 +11,11 @@ namespace ugv::terrain::detail {
 namespace {
 
 constexpr KernelTable kGeneric{SimdLevel::generic, place_chunk_generic,
-                               turn_slots_generic, find_merges_generic, spread_corners_generic};
+                               turn_slots_generic, find_merges_generic, spread_corners_generic,
+                               spread_corners_centred_generic};
 #if defined(UGV_TERRAIN_HAVE_AVX2)
 constexpr KernelTable kAvx2{SimdLevel::avx2, place_chunk_avx2, turn_slots_avx2,
-                            find_merges_avx2, spread_corners_avx2};
+                            find_merges_avx2, spread_corners_avx2, spread_corners_centred_avx2};
 #endif
 
 SimdLevel detect()

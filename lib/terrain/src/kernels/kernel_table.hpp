@@ -18,7 +18,8 @@ struct KernelTable
     PlaceChunk place_chunk;  // rows and columns rings (eq. 6)
     TurnSlots turn_slots;
     FindMerges find_merges;
-    SpreadCorners spread_corners;  // a spread point's summed-area corners
+    SpreadCorners spread_corners;           // a spread point's summed-area corners
+    SpreadCorners spread_corners_centred;   // the same, centred form (4 components)
 };
 
 // The table in use.

@@ -34,7 +34,49 @@ void spread_corners_generic(double* corners, std::size_t stride, const int* at_r
     }
 }
 
+void spread_corners_centred_generic(double* corners, std::size_t stride, const int* at_row, const int* at_column,
+                                    const double* weight, const CornerAxis& x, const CornerAxis& y)
+{
+    constexpr int k4 = kCentredCornerComponents;
+    for (int a = 0; a < 4; ++a) {
+        const double f = x.fraction[a];
+        const double r[k4] = {weight[0] * f, weight[1] * f, weight[2] * f, x.count[a]};
+        double* line = corners + static_cast<std::size_t>(at_row[a]) * stride * k4;
+        for (int b = 0; b < 4; ++b) {
+            const double e = y.fraction[b];
+            double* c = line + static_cast<std::size_t>(at_column[b]) * k4;
+            c[0] += r[0] * e;
+            c[1] += r[1] * e;
+            c[2] += r[2] * e;
+            c[3] += r[3] * y.count[b];
+        }
+    }
+}
+
 #if defined(UGV_TERRAIN_HAVE_AVX2)
+
+UGV_AVX2 void spread_corners_centred_avx2(double* corners, std::size_t stride, const int* at_row,
+                                          const int* at_column, const double* weight, const CornerAxis& x,
+                                          const CornerAxis& y)
+{
+    constexpr int k4 = kCentredCornerComponents;
+    const __m256d weight_lo = _mm256_set_pd(1.0, weight[2], weight[1], weight[0]);
+    __m256d column[4];
+    std::size_t column_at[4];
+    for (int b = 0; b < 4; ++b) {
+        column_at[b] = static_cast<std::size_t>(at_column[b]) * k4;
+        column[b] = _mm256_blend_pd(_mm256_set1_pd(y.fraction[b]), _mm256_set1_pd(y.count[b]), 0x8);
+    }
+    for (int a = 0; a < 4; ++a) {
+        const __m256d row =
+            _mm256_mul_pd(weight_lo, _mm256_blend_pd(_mm256_set1_pd(x.fraction[a]), _mm256_set1_pd(x.count[a]), 0x8));
+        double* line = corners + static_cast<std::size_t>(at_row[a]) * stride * k4;
+        for (int b = 0; b < 4; ++b) {
+            double* c = line + column_at[b];
+            _mm256_store_pd(c, _mm256_fmadd_pd(row, column[b], _mm256_load_pd(c)));
+        }
+    }
+}
 
 UGV_AVX2 void spread_corners_avx2(double* corners, std::size_t stride, const int* at_row, const int* at_column,
                                   const double* weight, const CornerAxis& x, const CornerAxis& y)

@@ -7,8 +7,9 @@
 
 namespace ugv::terrain::detail {
 
-// A corner record: 8 doubles (spread_sums.hpp lists them).
+// A corner record: 8 doubles (spread_sums.hpp lists them); the centred form's, the first 4.
 constexpr int kCornerComponents = 8;
+constexpr int kCentredCornerComponents = 4;
 
 // One axis of a footprint: each of its four corners' entries (spread_sums.hpp).
 struct CornerAxis
@@ -25,11 +26,17 @@ struct CornerAxis
 using SpreadCorners = void (*)(double* corners, std::size_t stride, const int* at_row, const int* at_column,
                                const double* weight, const CornerAxis& x, const CornerAxis& y);
 
+// The centred form's: the same with records of the first 4 components (w, wz, wz2, count).
+void spread_corners_centred_generic(double* corners, std::size_t stride, const int* at_row, const int* at_column,
+                                    const double* weight, const CornerAxis& x, const CornerAxis& y);
+
 void spread_corners_generic(double* corners, std::size_t stride, const int* at_row, const int* at_column,
                             const double* weight, const CornerAxis& x, const CornerAxis& y);
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 void spread_corners_avx2(double* corners, std::size_t stride, const int* at_row, const int* at_column,
                          const double* weight, const CornerAxis& x, const CornerAxis& y);
+void spread_corners_centred_avx2(double* corners, std::size_t stride, const int* at_row, const int* at_column,
+                                 const double* weight, const CornerAxis& x, const CornerAxis& y);
 #endif
 
 }  // namespace ugv::terrain::detail

@@ -14,6 +14,14 @@ enum class MapMode : int8_t {
     world_aligned = 1,  // a 2-D ring buffer on ENU axes that only translates; rotated on output
 };
 
+// How section 3.5 spreads a point (docs/terrain.md, "Section 3.5: spreading").
+enum class SpreadForm : int8_t {
+    exact = 0,        // cell by cell: the reference
+    summed_area = 1,  // the same sums up to rounding, at a cost that does not grow with the footprint
+    centred = 2,      // summed-area with each share at its cell's centre: weight, mean, variance,
+                      // count and extremes as exact up to rounding; the edge cells' x/y sums not
+};
+
 struct MapConfig
 {
     double grid_size_m = 0.2;   // G_l
@@ -29,9 +37,7 @@ struct MapConfig
     double reference_y_m = 0.0;
     bool spread = true;          // section 3.5: spread a point whose sigma exceeds G_l
     int spread_max_cells = 2;    // footprint half-width cap, cells (1..4)
-    // Spread cell by cell (the reference) instead of in summed-area form (the same sums up
-    // to rounding, at a cost that does not grow with the footprint: src/spread_sums.hpp).
-    bool spread_exact = false;
+    SpreadForm spread_form = SpreadForm::summed_area;  // src/spread_sums.hpp
     double min_variance_m2 = 1e-6;  // floor of a point's variance (a zero variance would be an infinite weight)
     int64_t pose_history_us = 2'000'000;
     double max_interpolation_span_s = 0.1;  // longer point batches are fused in runs that span at most this

@@ -22,7 +22,8 @@ namespace ugv::terrain {
 
 namespace detail {
 struct PlacedPoints;  // the fusion loop's scratch (src/kernels/fusion_kernels.hpp)
-class SpreadSums;    // section 3.5 spreading in summed-area form (src/spread_sums.hpp)
+template <int K>
+class SpreadSumsOf;  // section 3.5 spreading in summed-area form (src/spread_sums.hpp)
 }
 
 // One batch of points in the body frame (a view; the arrays hold count values each).
@@ -159,6 +160,7 @@ public:
 
 private:
     void decide_restore(const Pose& first);
+    void discard_spread();  // the pending shares dropped (the map is cleared)
     struct Frame;
     Frame local_frame() const;
     void move_egocentric(const Pose& pose);
@@ -168,11 +170,13 @@ private:
     std::size_t fuse_into(Grid& grid, const PointBatch& batch, bool split);
     template <typename Grid>
     void fuse_point(Grid& grid, float x, float y, double z, float variance_m2, TimeTick t_ms);
-    // Section 3.5: spread_point adds the point to the pending summed-area corners (or, with
-    // config.spread_exact, runs spread_exact); spread_exact splats it cell by cell, the
-    // readable reference the summed-area form is tested against.
+    // Section 3.5: spread_point adds the point to the pending summed-area corners of
+    // config.spread_form (or, with SpreadForm::exact, runs spread_exact); spread_exact splats
+    // it cell by cell, the readable reference the summed-area forms are tested against.
     template <typename Grid>
     void spread_point(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
+    template <typename Sums, typename Grid>
+    void spread_summed(Sums& sums, Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     template <typename Grid>
     void spread_exact(Grid& grid, float x, float y, double z, float variance_m2, float w, TimeTick t_ms);
     Eigen::Vector2d reference_world(const Pose& pose) const;
@@ -191,7 +195,8 @@ private:
     Eigen::Vector2d anchor_m_{0, 0};  // egocentric: ENU of the local frame's origin
     double anchor_yaw_rad_ = 0.0;     // egocentric: ENU yaw of the local X axis
     std::unique_ptr<detail::PlacedPoints> placed_;  // allocated once: fuse() allocates nothing
-    std::unique_ptr<detail::SpreadSums> spread_sums_;  // with spread and not spread_exact
+    std::unique_ptr<detail::SpreadSumsOf<8>> spread_sums_;     // with spread, SpreadForm::summed_area
+    std::unique_ptr<detail::SpreadSumsOf<4>> spread_centred_;  // with spread, SpreadForm::centred
     std::unique_ptr<MapState> pending_restore_;
     RestoreOutcome restore_outcome_ = RestoreOutcome::none;
     double restore_distance_m_ = std::numeric_limits<double>::quiet_NaN();
