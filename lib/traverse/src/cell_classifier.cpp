@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -226,12 +227,14 @@ void slope_row_sums(const float* __restrict lw, const float* __restrict lz, cons
     }
 }
 
-// The slope's column pass for one row of windows: the row sums of the window's rows (rows[r]
+// The slope's column pass for one row of windows (the cells [j_from, j_to), whole vectors):
+// the row sums of the window's rows (rows[r]
 // points at row r's six sums, kRowSums apart by w4; fd[r] its offset), added in order of the
 // rows into the plane's ten moments, four cells at a time in registers.
-void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t w4, float* __restrict m)
+void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t w4, std::size_t j_from,
+                       std::size_t j_to, float* __restrict m)
 {
-    for (std::size_t j = 0; j < w4; j += 4) {
+    for (std::size_t j = j_from; j < j_to; j += 4) {
         F4 s0{}, sp{}, spp{}, sq{}, sqq{}, spq{}, sz{}, szp{}, szq{}, so{};
         for (int r = 0; r < nrows; ++r) {
             const float* row = rows[r];
@@ -665,7 +668,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             slope_rows_[static_cast<std::size_t>(nrows)] = rows(p);
             slope_fd_[static_cast<std::size_t>(nrows)] = static_cast<float>(p - i);
         }
-        slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, moments_.data());
+        // Only the cells from the row's first known one to its last need a slope.
+        const uint8_t* kr = &known_[i * w];
+        const int jlo = static_cast<int>(std::find(kr, kr + w, 1) - kr);
+        if (jlo == ny) continue;
+        const int jhi = ny - static_cast<int>(std::find(std::make_reverse_iterator(kr + w), std::make_reverse_iterator(kr), 1) -
+                                              std::make_reverse_iterator(kr + w));
+        slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
+                          (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
         const float *s0 = &moments_[0], *sp = &moments_[w4], *spp = &moments_[2 * w4], *sq = &moments_[3 * w4];
         const float *sqq = &moments_[4 * w4], *spq = &moments_[5 * w4], *sz = &moments_[6 * w4];
         const float *szp = &moments_[7 * w4], *szq = &moments_[8 * w4], *so = &moments_[9 * w4];
@@ -674,7 +684,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         // and no call, so that it vectorises; the arc tangent follows.
         tangent_.resize(w);
         float* __restrict tangent = tangent_.data();
-        for (int j = 0; j < ny; ++j) {
+        for (int j = jlo; j < jhi; ++j) {
             const double c0 = s0[j];
             const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
             const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
@@ -684,7 +694,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
             tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
         }
-        for (int j = 0; j < ny; ++j) {
+        for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
             if (so[j] > 0.5f) edge_[k] |= kObstacleNear;
