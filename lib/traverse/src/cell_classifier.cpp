@@ -24,6 +24,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
+static_assert(kGroundStride == 3, "the lattice squares' flags are taken three cells at a time");
 
 // GCC/Clang vector extensions for the local ground's windows (what each lane computes is
 // the scalar expression's IEEE result, so the values do not depend on the vectors).
@@ -177,6 +178,10 @@ void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, st
     for (int i = 0; i < nx; ++i) {
         for (std::size_t j = 0; j < w; ++j) pad[hh + j] = in(i * w + j);
         float* r = rows + static_cast<std::size_t>(i) * w4;
+        if (hh == 1) {  // the default: unrolled
+            for (std::size_t j = 0; j < w4; j += 4) store4(r + j, pick(pick(load4(pad + j), load4(pad + j + 1)), load4(pad + j + 2)));
+            continue;
+        }
         for (std::size_t j = 0; j < w4; j += 4) {
             F4 acc = load4(pad + j);
             for (std::size_t d = 1; d <= 2 * hh; ++d) acc = pick(acc, load4(pad + j + d));
@@ -186,9 +191,13 @@ void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, st
     for (int i = 0; i < nx; ++i) {
         const int plo = std::max(0, i - h), phi = std::min(nx - 1, i + h);
         float* o = &out[i * w];
+        const float* first = rows + static_cast<std::size_t>(plo) * w4;
         for (std::size_t j = 0; j < w4; j += 4) {
-            F4 acc = load4(rows + static_cast<std::size_t>(plo) * w4 + j);
-            for (int p = plo + 1; p <= phi; ++p) acc = pick(acc, load4(rows + static_cast<std::size_t>(p) * w4 + j));
+            F4 acc = load4(first + j);
+            if (phi - plo == 2)  // the default's inner rows: unrolled
+                acc = pick(pick(acc, load4(first + w4 + j)), load4(first + 2 * w4 + j));
+            else
+                for (int p = plo + 1; p <= phi; ++p) acc = pick(acc, load4(rows + static_cast<std::size_t>(p) * w4 + j));
             if (j + 4 <= w)
                 store4(o + j, acc);
             else
@@ -310,7 +319,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     for (int i = 0; i < nx; ++i) {
         uint8_t* sq = &square_known_[static_cast<std::size_t>(i / kGroundStride) * ly];
         const uint8_t* kr = &known_[i * w];
-        for (std::size_t j = 0; j < w; ++j) sq[j / kGroundStride] |= kr[j];
+        std::size_t j = 0;
+        for (; j + kGroundStride <= w; j += kGroundStride) sq[j / kGroundStride] |= kr[j] | kr[j + 1] | kr[j + 2];
+        for (; j < w; ++j) sq[j / kGroundStride] |= kr[j];
     }
     needed_.assign(lattice_points, 0);
     for (int a = 0; a < lx; ++a)
@@ -330,7 +341,8 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         float* odd = &parity_means_[(static_cast<std::size_t>(nx) + i) * half];
         const float* mr = &g.mean_z_m[i * w];
         const uint8_t* kr = &known_[i * w];
-        for (std::size_t j = 0; j < w; ++j) (j & 1 ? odd : even)[j / 2] = kr[j] ? mr[j] : kNaN;
+        for (std::size_t e = 0; e < (w + 1) / 2; ++e) even[e] = kr[2 * e] ? mr[2 * e] : kNaN;
+        for (std::size_t e = 0; e < w / 2; ++e) odd[e] = kr[2 * e + 1] ? mr[2 * e + 1] : kNaN;
         if (w & 1) odd[w / 2] = kNaN;
     }
     // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
