@@ -654,7 +654,11 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     line_w_.assign(w4 + 2 * hw, 0.0f);
     line_z_.assign(w4 + 2 * hw, 0.0f);
     line_o_.assign(w4 + 2 * hw, 0.0f);
+    // Rows without a known cell have row sums of +0, which add nothing: they are skipped.
+    row_known_.resize(static_cast<std::size_t>(nx));
+    for (int i = 0; i < nx; ++i) row_known_[static_cast<std::size_t>(i)] = std::find(&known_[i * w], &known_[i * w] + w, 1) != &known_[i * w] + w;
     auto row_pass = [&](int i) {
+        if (!row_known_[static_cast<std::size_t>(i)]) return;
         float *lw = line_w_.data() + hw, *lz = line_z_.data() + hw, *lo = line_o_.data() + hw;
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
@@ -676,9 +680,11 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
         int nrows = 0;
-        for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p, ++nrows) {
+        for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p) {
+            if (!row_known_[static_cast<std::size_t>(p)]) continue;
             slope_rows_[static_cast<std::size_t>(nrows)] = rows(p);
             slope_fd_[static_cast<std::size_t>(nrows)] = static_cast<float>(p - i);
+            ++nrows;
         }
         // Only the cells from the row's first known one to its last need a slope.
         const uint8_t* kr = &known_[i * w];
