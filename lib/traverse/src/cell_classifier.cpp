@@ -58,7 +58,6 @@ unsigned lane_bits(I4 m)
     return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
 #endif
 }
-bool any_lane(I4 m) { return lane_bits(m) != 0; }
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
@@ -350,6 +349,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
     win_v_.resize(max_points);
     win_lev_.resize(max_points);
+    win_flags_.resize(max_points / 4);
     win_sel_.resize(max_points);
     win_q_.resize(4 * row_vectors);
     lane_known_.resize(4 * row_vectors);
@@ -459,7 +459,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             const F4 gq4 = {first.gq, first.gq, first.gq, first.gq};
             const float level = first.a + zref;
             const F4 level4 = {level, level, level, level};
-            I4 off = {0, 0, 0, 0}, near = {0, 0, 0, 0}, below = {0, 0, 0, 0};
+            I4 below = {0, 0, 0, 0};
+            unsigned any_flag = 0;
+            uint8_t* __restrict flags = win_flags_.data();  // per vector: the lanes off or near the band
             for (int r = 0; r < nr; ++r) {
                 const float fp = static_cast<float>(plo + 2 * r - i), gp = first.gp * fp;
                 const F4 gp4 = {gp, gp, gp, gp};
@@ -467,20 +469,23 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
                     const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
                     const F4 x = load4(v + at), gqq = gq4 * load4(fq + 4 * c);
                     const F4 d = abs4(x - ((fa4 + gp4) + gqq));
-                    off |= d > bandf;
-                    near |= abs4(d - bandf) <= tol4;
+                    const unsigned flag = lane_bits((d > bandf) | (abs4(d - bandf) <= tol4));
+                    flags[at / 4] = static_cast<uint8_t>(flag);
+                    any_flag |= flag;
                     const F4 l = x + (zr - (gp4 + gqq));
                     store4(lev + at, l);
                     below -= l < level4;
                 }
             }
             bool subtracted = false;
-            if (any_lane(off | near)) {
+            if (any_flag) {  // the flagged points tested as the reference, in its order
                 const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                for (int r = 0; r < nr; ++r)
-                    for (int t = 0; t < nq; ++t) {
-                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[t];
-                        const double x = v[(static_cast<std::size_t>(r) * nv) * 4 + t];
+                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv); ++vec)
+                    for (unsigned lanes = flags[vec]; lanes != 0; lanes &= lanes - 1) {
+                        const std::size_t at = vec * 4 + static_cast<std::size_t>(__builtin_ctz(lanes));
+                        const int r = static_cast<int>(vec / static_cast<std::size_t>(nv));
+                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % (4 * static_cast<std::size_t>(nv))];
+                        const double x = v[at];
                         if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
                         subtracted = true;
                         m.s0 -= 1;

@@ -74,7 +74,7 @@ private:
     // gathered for the percentile's last step; per lane (two doubles): the columns' offsets and the heights' sums.
     std::vector<float> known_f_, column_sums_;
     std::vector<float> parity_means_, win_v_, win_lev_, win_q_, win_sel_;
-    std::vector<uint8_t> square_known_, needed_;  // per lattice square: holds a known cell; per point: read
+    std::vector<uint8_t> square_known_, needed_, win_flags_;  // per lattice square: holds a known cell; per point: read
     std::vector<int32_t> lane_known_;
     using Lanes = double __attribute__((vector_size(16)));
     std::vector<Lanes> lane_q_, lane_z_, lane_pz_;
