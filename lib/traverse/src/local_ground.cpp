@@ -60,7 +60,6 @@ void interpolate_ground_squares(const TerrainGrid& g, const std::vector<uint8_t>
 {
     // GCC/Clang vector extensions; each lane is the scalar expression's IEEE result.
     using F4 = float __attribute__((vector_size(16)));
-    using I4 = int32_t __attribute__((vector_size(16)));
     constexpr int kStride = kGroundStride;
     const int nx = g.nx, ny = g.ny;
     const int lx = (nx - 1) / kStride + 1, ly = (ny - 1) / kStride + 1;
@@ -91,10 +90,11 @@ void interpolate_ground_squares(const TerrainGrid& g, const std::vector<uint8_t>
                     const float row = lattice[l] + lattice_slope[l][0] * static_cast<float>(i - ca[u] * kStride);
                     const float s1 = lattice_slope[l][1], dj0 = static_cast<float>(b * kStride - cb[u] * kStride);
                     const F4 row4 = {row, row, row, row}, s14 = {s1, s1, s1, s1}, dj04 = {dj0, dj0, dj0, dj0};
+                    // A lane whose weight is 0 (skipped by interpolate_ground) adds +-0 to sums
+                    // that are never -0 (the level is finite): no change.
                     const F4 level = row4 + s14 * (dj04 + dj);
-                    const I4 use = wc[u] > zero;
-                    sum = use ? sum + wc[u] * level : sum;
-                    weight = use ? weight + wc[u] : weight;
+                    sum += wc[u] * level;
+                    weight += wc[u];
                 }
                 const F4 value = weight > min_weight ? sum / weight : nan4;
                 const std::size_t row_start = static_cast<std::size_t>(i) * w;
