@@ -1,7 +1,6 @@
 #include "local_ground.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 
 namespace ugv::traverse {
