@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -84,10 +83,10 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
 // marks a hole): what std::nth_element would put at k were the holes left out. A bracket
-// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
-// found from guess (below_guess = count_below(guess), known to the caller) in steps that grow from `step`, then narrowed at the level the counts
-// point to until it holds few values; those are gathered and the one of rank k among
-// them picked by insertion sort (the first of equal values in v's order, as a running
+// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is found from guess
+// (below_guess = count_below(guess), which the caller counted) in steps that grow from
+// `step`, then narrowed at the level the counts point to until it holds few values; those
+// are gathered and the one of rank k among them picked by insertion sort (the first of equal values in v's order, as a running
 // minimum would). buf holds n values.
 float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, std::size_t below_guess,
                   float step, float* __restrict buf)
@@ -178,7 +177,8 @@ void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, st
         for (std::size_t j = 0; j < w; ++j) pad[hh + j] = in(i * w + j);
         float* r = rows + static_cast<std::size_t>(i) * w4;
         if (hh == 1) {  // the default: unrolled
-            for (std::size_t j = 0; j < w4; j += 4) store4(r + j, pick(pick(load4(pad + j), load4(pad + j + 1)), load4(pad + j + 2)));
+            for (std::size_t j = 0; j < w4; j += 4)
+                store4(r + j, pick(pick(load4(pad + j), load4(pad + j + 1)), load4(pad + j + 2)));
             continue;
         }
         for (std::size_t j = 0; j < w4; j += 4) {
@@ -661,7 +661,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     line_o_.assign(w4 + 2 * hw, 0.0f);
     // Rows without a known cell have row sums of +0, which add nothing: they are skipped.
     row_known_.resize(static_cast<std::size_t>(nx));
-    for (int i = 0; i < nx; ++i) row_known_[static_cast<std::size_t>(i)] = std::find(&known_[i * w], &known_[i * w] + w, 1) != &known_[i * w] + w;
+    for (int i = 0; i < nx; ++i) {
+        const uint8_t* kr = &known_[i * w];
+        row_known_[static_cast<std::size_t>(i)] = std::find(kr, kr + w, 1) != kr + w;
+    }
     auto row_pass = [&](int i) {
         if (!row_known_[static_cast<std::size_t>(i)]) return;
         float *lw = line_w_.data() + hw, *lz = line_z_.data() + hw, *lo = line_o_.data() + hw;
@@ -695,8 +698,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         const uint8_t* kr = &known_[i * w];
         const int jlo = static_cast<int>(std::find(kr, kr + w, 1) - kr);
         if (jlo == ny) continue;
-        const int jhi = ny - static_cast<int>(std::find(std::make_reverse_iterator(kr + w), std::make_reverse_iterator(kr), 1) -
-                                              std::make_reverse_iterator(kr + w));
+        int jhi = ny;
+        while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
         slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
                           (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
         const float *s0 = &moments_[0], *sp = &moments_[w4], *spp = &moments_[2 * w4], *sq = &moments_[3 * w4];
