@@ -187,7 +187,7 @@ void CandidateArcs::judge(const TerrainGrid& g, const TraversabilityLayers& laye
     best = -1;
     for (std::size_t a = 0; a < sweeps_.size(); ++a) {
         if (++stamp_ == 0) {  // wrapped: forget every mark
-            std::fill(seen_.begin(), seen_.end(), 0u);
+            std::fill(seen_.begin(), seen_.end(), uint16_t{0});
             stamp_ = 1;
         }
         ArcVerdict& v = out[a];

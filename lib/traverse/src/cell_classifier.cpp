@@ -9,6 +9,10 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace ugv::traverse {
 
 namespace {
@@ -19,13 +23,13 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
+static_assert(kGroundStride == 3, "the lattice squares' flags are taken three cells at a time");
 
 // GCC/Clang vector extensions for the local ground's windows (what each lane computes is
 // the scalar expression's IEEE result, so the values do not depend on the vectors).
 using F4 = float __attribute__((vector_size(16)));
 using I4 = int32_t __attribute__((vector_size(16)));
 using D2 = double __attribute__((vector_size(16)));
-using L2 = int64_t __attribute__((vector_size(16)));
 
 F4 load4(const float* p)
 {
@@ -43,7 +47,16 @@ void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
 F4 nan4() { return F4{kNaN, kNaN, kNaN, kNaN}; }
 D2 low2(F4 v) { return D2{v[0], v[1]}; }
 D2 high2(F4 v) { return D2{v[2], v[3]}; }
-D2 abs2(D2 v) { return (D2)((L2)v & L2{INT64_MAX, INT64_MAX}); }
+F4 abs4(F4 v) { return (F4)((I4)v & I4{INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}); }
+// A comparison's mask as bits, lane e in bit e (SSE: one movmskps).
+unsigned lane_bits(I4 m)
+{
+#if defined(__SSE2__)
+    return static_cast<unsigned>(_mm_movemask_ps((__m128)m));
+#else
+    return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
+#endif
+}
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
@@ -70,20 +83,20 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
 // marks a hole): what std::nth_element would put at k were the holes left out. A bracket
-// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is
-// found from guess in steps that grow from `step`, then narrowed at the level the counts
-// point to until it holds few values; those are gathered and the one of rank k among
-// them picked by insertion sort (the first of equal values in v's order, as a running
+// [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is found from guess
+// (below_guess = count_below(guess), which the caller counted) in steps that grow from
+// `step`, then narrowed at the level the counts point to until it holds few values; those
+// are gathered and the one of rank k among them picked by insertion sort (the first of equal values in v's order, as a running
 // minimum would). buf holds n values.
-float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, float step,
-                  float* __restrict buf)
+float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, std::size_t below_guess,
+                  float step, float* __restrict buf)
 {
     constexpr std::size_t kFew = 12;
     float lo = -kInf, hi = kInf;
     std::size_t below_lo = 0, below_hi = finite;
     float t = guess;
     for (int iter = 0; iter < 64 && below_hi - below_lo > kFew; ++iter) {
-        const std::size_t c = count_below(v, n, t);
+        const std::size_t c = iter == 0 ? below_guess : count_below(v, n, t);
         if (c <= k) {
             lo = t;
             below_lo = c;
@@ -104,17 +117,12 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
         }
     }
     // The values in [lo, hi), in v's order; rank k - below_lo among them. Four at a time
-    // tested, and the few fours that hold one gathered.
+    // tested, and the lanes that hold one gathered.
     std::size_t m = 0, u = 0;
     const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
-    for (; u + 4 <= n; u += 4) {
-        const I4 in = (load4(v + u) >= lo4) & (load4(v + u) < hi4);
-        if ((in[0] | in[1] | in[2] | in[3]) == 0) continue;
-        for (std::size_t e = u; e < u + 4; ++e) {
-            buf[m] = v[e];
-            m += v[e] >= lo && v[e] < hi ? 1 : 0;
-        }
-    }
+    for (; u + 4 <= n; u += 4)
+        for (unsigned in = lane_bits((load4(v + u) >= lo4) & (load4(v + u) < hi4)); in != 0; in &= in - 1)
+            buf[m++] = v[u + static_cast<std::size_t>(__builtin_ctz(in))];
     for (; u < n; ++u) {
         buf[m] = v[u];
         m += v[u] >= lo && v[u] < hi ? 1 : 0;
@@ -142,110 +150,117 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
     return buf[first];
 }
 
-// out[k] = min (or max) of in over the square window of half-width h around k; cells
-// outside the grid are skipped. Separable: rows, then columns; each pass a running
-// min/max over whole rows so that it vectorises.
-template <bool kMin>
-void window_extreme(const std::vector<float>& in, int nx, int ny, int h, std::vector<float>& tmp,
-                    std::vector<float>& out)
+// out[k] = min (or max) of in(k) over the square window of half-width h around k; cells
+// outside the grid are skipped (in gives no NaN, so the order of the picks does not
+// matter). Separable: each row padded with h identities on each side (no edge cases) and
+// its windows taken four cells at a time in registers, then the columns likewise.
+template <bool kMin, class Value>
+void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, std::vector<float>& out)
 {
-    const auto pick = [](float a, float b) { return kMin ? (b < a ? b : a) : (b > a ? b : a); };
-    const std::size_t w = static_cast<std::size_t>(ny);
-    tmp.resize(in.size());
-    out.resize(in.size());
+    const float identity = kMin ? kInf : -kInf;
+    const auto pick = [](F4 a, F4 b) {
+#if defined(__SSE2__)
+        return kMin ? (F4)_mm_min_ps((__m128)b, (__m128)a) : (F4)_mm_max_ps((__m128)b, (__m128)a);  // b < a ? b : a
+#else
+        return kMin ? (b < a ? b : a) : (b > a ? b : a);
+#endif
+    };
+    const std::size_t w = static_cast<std::size_t>(ny), w4 = (w + 3) / 4 * 4, hh = static_cast<std::size_t>(h);
+    // tmp: the padded row, then the rows' windows at a stride of whole vectors.
+    const std::size_t pad_len = w4 + 2 * hh;
+    tmp.resize(pad_len + static_cast<std::size_t>(nx) * w4);
+    out.resize(static_cast<std::size_t>(nx) * w);
+    float* __restrict pad = tmp.data();
+    float* __restrict rows = tmp.data() + pad_len;
+    std::fill(pad, pad + pad_len, identity);
     for (int i = 0; i < nx; ++i) {
-        const float* __restrict row = &in[i * w];
-        float* __restrict t = &tmp[i * w];
-        for (std::size_t j = 0; j < w; ++j) t[j] = row[j];
-        for (int d = 1; d <= h; ++d) {
-            const std::size_t dd = static_cast<std::size_t>(std::min(d, ny));
-            for (std::size_t j = 0; j + dd < w; ++j) t[j] = pick(t[j], row[j + dd]);
-            for (std::size_t j = dd; j < w; ++j) t[j] = pick(t[j], row[j - dd]);
+        for (std::size_t j = 0; j < w; ++j) pad[hh + j] = in(i * w + j);
+        float* r = rows + static_cast<std::size_t>(i) * w4;
+        if (hh == 1) {  // the default: unrolled
+            for (std::size_t j = 0; j < w4; j += 4)
+                store4(r + j, pick(pick(load4(pad + j), load4(pad + j + 1)), load4(pad + j + 2)));
+            continue;
+        }
+        for (std::size_t j = 0; j < w4; j += 4) {
+            F4 acc = load4(pad + j);
+            for (std::size_t d = 1; d <= 2 * hh; ++d) acc = pick(acc, load4(pad + j + d));
+            store4(r + j, acc);
         }
     }
     for (int i = 0; i < nx; ++i) {
-        float* __restrict o = &out[i * w];
-        const float* __restrict t0 = &tmp[i * w];
-        for (std::size_t j = 0; j < w; ++j) o[j] = t0[j];
-        for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); ++p) {
-            if (p == i) continue;
-            const float* __restrict t = &tmp[static_cast<std::size_t>(p) * w];
-            for (std::size_t j = 0; j < w; ++j) o[j] = pick(o[j], t[j]);
+        const int plo = std::max(0, i - h), phi = std::min(nx - 1, i + h);
+        float* o = &out[i * w];
+        const float* first = rows + static_cast<std::size_t>(plo) * w4;
+        for (std::size_t j = 0; j < w4; j += 4) {
+            F4 acc = load4(first + j);
+            if (phi - plo == 2)  // the default's inner rows: unrolled
+                acc = pick(pick(acc, load4(first + w4 + j)), load4(first + 2 * w4 + j));
+            else
+                for (int p = plo + 1; p <= phi; ++p) acc = pick(acc, load4(rows + static_cast<std::size_t>(p) * w4 + j));
+            if (j + 4 <= w)
+                store4(o + j, acc);
+            else
+                for (std::size_t e = j; e < w; ++e) o[e] = acc[e - j];
         }
     }
 }
 
-// (Not inlined: GCC vectorises them only with the __restrict parameters in view.)
-// One column offset d of the slope's row pass: the row's weights w, heights z and obstacle
-// flags o, shifted by d, added into the five row sums and the obstacle count.
-template <bool kFirst>
-[[gnu::noinline]] void add_row_tap(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo,
-                 float* __restrict rw, float* __restrict rwq, float* __restrict rwqq, float* __restrict rwz,
-                 float* __restrict rwzq, float* __restrict ro, int d, int ny)
+// The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
+// of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, four cells
+// at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and to
+// whole vectors. Each sum starts at +0 and adds the taps in the order of d, as a plain loop
+// would (a padded tap adds +-0, which changes no sum: none is ever -0).
+void slope_row_sums(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo, int hp,
+                    std::size_t w4, float* __restrict rw, float* __restrict rwq, float* __restrict rwqq,
+                    float* __restrict rwz, float* __restrict rwzq, float* __restrict ro)
 {
-    const float fd = static_cast<float>(d);
-    const int from = std::max(0, -d), to = std::max(0, ny - std::max(0, d));
-    if (kFirst) {  // the sums start at +0 (0 + x below), so that no pass clears them first
-        for (int j = 0; j < std::min(from, ny); ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
-        for (int j = std::max(to, std::min(from, ny)); j < ny; ++j) rw[j] = rwq[j] = rwqq[j] = rwz[j] = rwzq[j] = ro[j] = 0.0f;
-        for (int j = from; j < to; ++j) {
-            const float wv = lw[j + d], zv = lz[j + d] * wv;
-            rw[j] = 0.0f + wv;
-            rwq[j] = 0.0f + fd * wv;
-            rwqq[j] = 0.0f + fd * fd * wv;
-            rwz[j] = 0.0f + zv;
-            rwzq[j] = 0.0f + fd * zv;
-            ro[j] = 0.0f + lo[j + d];
+    for (std::size_t j = 0; j < w4; j += 4) {
+        F4 sw{}, swq{}, swqq{}, swz{}, swzq{}, so{};
+        for (int t = 0; t <= 2 * hp; ++t) {
+            const float fd = static_cast<float>(t - hp);
+            const F4 wv = load4(lw + j + t), zv = load4(lz + j + t) * wv;
+            sw += wv;
+            swq += fd * wv;
+            swqq += fd * fd * wv;
+            swz += zv;
+            swzq += fd * zv;
+            so += load4(lo + j + t);
         }
-        return;
-    }
-    for (int j = from; j < to; ++j) {
-        const float wv = lw[j + d], zv = lz[j + d] * wv;
-        rw[j] += wv;
-        rwq[j] += fd * wv;
-        rwqq[j] += fd * fd * wv;
-        rwz[j] += zv;
-        rwzq[j] += fd * zv;
-        ro[j] += lo[j + d];
+        store4(rw + j, sw);
+        store4(rwq + j, swq);
+        store4(rwqq + j, swqq);
+        store4(rwz + j, swz);
+        store4(rwzq + j, swzq);
+        store4(ro + j, so);
     }
 }
 
-// One row offset fd of the column pass: a row's sums added into the window's moments.
-template <bool kFirst>
-[[gnu::noinline]] void add_column_tap(const float* __restrict rw, const float* __restrict rwq,
-                                      const float* __restrict rwqq, const float* __restrict rwz,
-                                      const float* __restrict rwzq, const float* __restrict ro, float* __restrict s0,
-                                      float* __restrict sp, float* __restrict spp, float* __restrict sq,
-                                      float* __restrict sqq, float* __restrict spq, float* __restrict sz,
-                                      float* __restrict szp, float* __restrict szq, float* __restrict so, float fd,
-                                      std::size_t w)
+// The slope's column pass for one row of windows (the cells [j_from, j_to), whole vectors):
+// the row sums of the window's rows (rows[r]
+// points at row r's six sums, kRowSums apart by w4; fd[r] its offset), added in order of the
+// rows into the plane's ten moments, four cells at a time in registers.
+void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t w4, std::size_t j_from,
+                       std::size_t j_to, float* __restrict m)
 {
-    if (kFirst) {  // the sums start at +0: 0 + x, so that no pass clears them first
-        for (std::size_t j = 0; j < w; ++j) {
-            s0[j] = 0.0f + rw[j];
-            sp[j] = 0.0f + fd * rw[j];
-            spp[j] = 0.0f + fd * fd * rw[j];
-            sq[j] = 0.0f + rwq[j];
-            sqq[j] = 0.0f + rwqq[j];
-            spq[j] = 0.0f + fd * rwq[j];
-            sz[j] = 0.0f + rwz[j];
-            szp[j] = 0.0f + fd * rwz[j];
-            szq[j] = 0.0f + rwzq[j];
-            so[j] = 0.0f + ro[j];
+    for (std::size_t j = j_from; j < j_to; j += 4) {
+        F4 s0{}, sp{}, spp{}, sq{}, sqq{}, spq{}, sz{}, szp{}, szq{}, so{};
+        for (int r = 0; r < nrows; ++r) {
+            const float* row = rows[r];
+            const float fd = fds[r];
+            const F4 rw = load4(row + j), rwq = load4(row + w4 + j), rwz = load4(row + 3 * w4 + j);
+            s0 += rw;
+            sp += fd * rw;
+            spp += fd * fd * rw;
+            sq += rwq;
+            sqq += load4(row + 2 * w4 + j);
+            spq += fd * rwq;
+            sz += rwz;
+            szp += fd * rwz;
+            szq += load4(row + 4 * w4 + j);
+            so += load4(row + 5 * w4 + j);
         }
-        return;
-    }
-    for (std::size_t j = 0; j < w; ++j) {
-        s0[j] += rw[j];
-        sp[j] += fd * rw[j];
-        spp[j] += fd * fd * rw[j];
-        sq[j] += rwq[j];
-        sqq[j] += rwqq[j];
-        spq[j] += fd * rwq[j];
-        sz[j] += rwz[j];
-        szp[j] += fd * rwz[j];
-        szq[j] += rwzq[j];
-        so[j] += ro[j];
+        const F4 all[10] = {s0, sp, spp, sq, sqq, spq, sz, szp, szq, so};
+        for (int e = 0; e < 10; ++e) store4(m + static_cast<std::size_t>(e) * w4 + j, all[e]);
     }
 }
 
@@ -282,30 +297,59 @@ CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
 
 void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double max_step_m, std::vector<float>& ground)
 {
-    // local_ground_reference, lattice point by lattice point, is the specification. Here the
-    // window's geometry (the moments of its known cells' offsets) comes from sums along the
-    // columns of a lattice row's window rows, then along the window's columns; the heights'
-    // moments from the window's points in rows of vectors of 4, unknown points as NaN (the
-    // same floats as the reference's, summed in double: integer offsets times floats, exact
-    // in any order); the second plane's by subtracting the points off the first; the
-    // percentile by counting.
+    // local_ground_reference, lattice point by lattice point, is the specification. Here only
+    // the lattice points some known cell reads are computed; the window's geometry (the
+    // moments of its known cells' offsets) comes from sums along the columns of a lattice
+    // row's window rows, then along the window's columns; the heights' moments from the
+    // window's points in rows of vectors of 4, unknown points as NaN (the same floats as the
+    // reference's, summed in double: integer offsets times floats, exact in any order); the
+    // outlier test in float where its error cannot change the verdict, else in double as the
+    // reference; the second plane's by subtracting the points off the first; the percentile
+    // by counting.
     const int nx = g.nx, ny = g.ny, h = ground_half_width(radius_m, g.resolution_m);
     const int lx = (nx - 1) / kGroundStride + 1, ly = (ny - 1) / kGroundStride + 1;
     const std::size_t n = g.cells(), w = static_cast<std::size_t>(ny), half = (w + 1) / 2;
-    lattice_.assign(static_cast<std::size_t>(lx) * ly, kNaN);
-    lattice_slope_.assign(static_cast<std::size_t>(lx) * ly, {0.0f, 0.0f});
+    const std::size_t lattice_points = static_cast<std::size_t>(lx) * static_cast<std::size_t>(ly);
+    lattice_.assign(lattice_points, kNaN);
+    lattice_slope_.assign(lattice_points, {0.0f, 0.0f});
+    // The lattice squares that hold a known cell, and the lattice points they read (their
+    // corners: a + 1 is clamped to the last lattice row, so a square's corners are a or a + 1).
+    square_known_.assign(lattice_points, 0);
+    for (int i = 0; i < nx; ++i) {
+        uint8_t* sq = &square_known_[static_cast<std::size_t>(i / kGroundStride) * ly];
+        const uint8_t* kr = &known_[i * w];
+        std::size_t j = 0;
+        for (; j + kGroundStride <= w; j += kGroundStride) sq[j / kGroundStride] |= kr[j] | kr[j + 1] | kr[j + 2];
+        for (; j < w; ++j) sq[j / kGroundStride] |= kr[j];
+    }
+    needed_.assign(lattice_points, 0);
+    for (int a = 0; a < lx; ++a)
+        for (int b = 0; b < ly; ++b)
+            if (square_known_[static_cast<std::size_t>(a) * ly + b])
+                for (int da = 0; da < 2; ++da)
+                    for (int db = 0; db < 2; ++db)
+                        needed_[static_cast<std::size_t>(std::min(a + da, lx - 1)) * ly + std::min(b + db, ly - 1)] = 1;
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
-    known_d_.resize(n);
-    parity_means_.assign(2 * static_cast<std::size_t>(nx) * half + 4, kNaN);  // + 4: a window row's last vector
-    for (std::size_t k = 0; k < n; ++k) known_d_[k] = known_[k] ? 1.0 : 0.0;
-    for (int i = 0; i < nx; ++i)
-        for (std::size_t j = 0; j < w; ++j)
-            if (known_[i * w + j]) parity_means_[((j & 1) * nx + i) * half + j / 2] = g.mean_z_m[i * w + j];
+    known_f_.resize(n);
+    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + 4);  // + 4: a window row's last vector
+    std::fill(parity_means_.end() - 4, parity_means_.end(), kNaN);
+    for (std::size_t k = 0; k < n; ++k) known_f_[k] = known_[k] ? 1.0f : 0.0f;
+    for (int i = 0; i < nx; ++i) {
+        float* even = &parity_means_[static_cast<std::size_t>(i) * half];
+        float* odd = &parity_means_[(static_cast<std::size_t>(nx) + i) * half];
+        const float* mr = &g.mean_z_m[i * w];
+        const uint8_t* kr = &known_[i * w];
+        for (std::size_t e = 0; e < (w + 1) / 2; ++e) even[e] = kr[2 * e] ? mr[2 * e] : kNaN;
+        for (std::size_t e = 0; e < w / 2; ++e) odd[e] = kr[2 * e + 1] ? mr[2 * e + 1] : kNaN;
+        if (w & 1) odd[w / 2] = kNaN;
+    }
     // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
     const std::size_t row_vectors = (static_cast<std::size_t>(h) + 4) / 4;
     const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
     win_v_.resize(max_points);
+    win_lev_.resize(max_points);
+    win_flags_.resize(max_points / 4);
     win_sel_.resize(max_points);
     win_q_.resize(4 * row_vectors);
     lane_known_.resize(4 * row_vectors);
@@ -313,15 +357,18 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     lane_z_.resize(2 * row_vectors);
     lane_pz_.resize(2 * row_vectors);
     column_sums_.resize(3 * w);
-    double *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
+    float *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
     for (int a = 0; a < lx; ++a) {
+        const uint8_t* need = &needed_[static_cast<std::size_t>(a) * ly];
+        if (std::find(need, need + ly, 1) == need + ly) continue;
         const int i = a * kGroundStride, plo = std::max(0, i - h), phi = std::min(nx - 1, i + h);
-        // Down the window's rows (every other), for every column: the sums of 1, p, pp.
-        std::fill(column_sums_.begin(), column_sums_.end(), 0.0);
+        // Down the window's rows (every other), for every column: the sums of 1, p, pp (small
+        // integers: exact in float).
+        std::fill(column_sums_.begin(), column_sums_.end(), 0.0f);
         for (int p = plo; p <= phi; p += 2) {
-            const double dp = p - i;
-            const double* __restrict kr = &known_d_[p * w];
+            const float dp = static_cast<float>(p - i);
+            const float* __restrict kr = &known_f_[p * w];
             for (std::size_t q = 0; q < w; ++q) {
                 c1[q] += kr[q];
                 cp[q] += dp * kr[q];
@@ -329,6 +376,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             }
         }
         for (int b = 0; b < ly; ++b) {
+            if (!need[b]) continue;
             const int j = b * kGroundStride, qlo = std::max(0, j - h), qhi = std::min(ny - 1, j + h);
             PlaneMoments m;
             for (int q = qlo; q <= qhi; q += 2) {
@@ -349,23 +397,17 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1, nv = (nq + 3) / 4;
             const std::size_t count = static_cast<std::size_t>(m.s0);
             float* __restrict v = win_v_.data();
+            float* __restrict lev = win_lev_.data();
             float* __restrict fq = win_q_.data();
             for (int t = 0; t < 4 * nv; ++t) {
                 fq[t] = t < nq ? static_cast<float>(qlo + 2 * t - j) : 0.0f;
                 lane_known_[static_cast<std::size_t>(t)] = t < nq ? -1 : 0;
             }
+            // The points, and their heights' moments per lane of the window's columns, then
+            // across them. The sums are exact (floats times small integers, in double), so
+            // their order does not matter; an unknown point adds +0 to a sum that started at
+            // +0. Also the largest |height|, for the float outlier test's error bound.
             const F4 zr = {zref, zref, zref, zref};
-            for (int r = 0; r < nr; ++r) {
-                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
-                for (int c = 0; c < nv; ++c) {
-                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
-                    const F4 x = load4(row + 4 * c) - zr;
-                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, (F4)(((I4)x & in) | ((I4)nan4() & ~in)));
-                }
-            }
-            // The heights' moments, per lane of the window's columns, then across them. The sums
-            // are exact (floats times small integers, in double), so their order does not
-            // matter; an unknown point adds +0 to a sum that started at +0.
             D2* __restrict az = lane_z_.data();
             D2* __restrict apz = lane_pz_.data();
             D2* __restrict dq = lane_q_.data();
@@ -375,12 +417,18 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
                 dq[2 * c + 1] = high2(q);
                 az[2 * c] = az[2 * c + 1] = apz[2 * c] = apz[2 * c + 1] = D2{0.0, 0.0};
             }
+            F4 largest = {0, 0, 0, 0};
             for (int r = 0; r < nr; ++r) {
+                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
                 const double p = plo + 2 * r - i;
                 const D2 fp = {p, p};
                 for (int c = 0; c < nv; ++c) {
-                    const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
+                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
+                    const F4 x0 = load4(row + 4 * c) - zr;
+                    const F4 x = (F4)(((I4)x0 & in) | ((I4)nan4() & ~in));
+                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, x);
                     const F4 xz = (F4)((I4)x & (x == x));
+                    largest = abs4(xz) > largest ? abs4(xz) : largest;
                     const D2 lo = low2(xz), hi = high2(xz);
                     az[2 * c] += lo;
                     az[2 * c + 1] += hi;
@@ -396,60 +444,90 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             }
             const PlaneFit first = plane_from_moments(m, nullptr);
             // The second plane: without the points more than band off the first (unknown ones
-            // compare false). Whether any is off, tested in vectors; the few windows with one
-            // then subtract those points (exact sums: in any order).
-            {
-                const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                const D2 band2 = {band, band}, gq2 = {fgq, fgq};
-                for (int e = 0; e < 2 * nv; ++e) apz[e] = gq2 * dq[e];  // reused: fgq q
-                L2 any = {0, 0};
-                for (int r = 0; r < nr; ++r) {
-                    const double p = static_cast<float>(plo + 2 * r - i), cr = fa + fgp * p;
-                    const D2 cr2 = {cr, cr};
-                    for (int c = 0; c < nv; ++c) {
-                        const F4 x = load4(v + (static_cast<std::size_t>(r) * nv + c) * 4);
-                        any |= abs2(low2(x) - (cr2 + apz[2 * c])) > band2;
-                        any |= abs2(high2(x) - (cr2 + apz[2 * c + 1])) > band2;
-                    }
-                }
-                if (any[0] | any[1]) {
-                    for (int r = 0; r < nr; ++r)
-                        for (int t = 0; t < nq; ++t) {
-                            const double p = static_cast<float>(plo + 2 * r - i), q = fq[t];
-                            const double x = v[(static_cast<std::size_t>(r) * nv) * 4 + t];
-                            if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
-                            m.s0 -= 1;
-                            m.sp -= p;
-                            m.sq -= q;
-                            m.spp -= p * p;
-                            m.sqq -= q * q;
-                            m.spq -= p * q;
-                            m.sz -= x;
-                            m.spz -= p * x;
-                            m.sqz -= q * x;
-                        }
+            // compare false). Tested in float, in the same pass that levels the points along
+            // the first plane and counts those below its level (without such points the second
+            // plane is the first): the float distance is within tol of the double one the
+            // reference compares (a few roundings of values below `bound`), so only a point
+            // within tol of the band needs the reference's double test.
+            const float bound = std::max({largest[0], largest[1], largest[2], largest[3]}) + std::abs(first.a) +
+                                static_cast<float>(h) * (std::abs(first.gp) + std::abs(first.gq)) +
+                                static_cast<float>(band);
+            const float tol = bound * 0x1p-18f;
+            const F4 bandf = {static_cast<float>(band), static_cast<float>(band), static_cast<float>(band),
+                              static_cast<float>(band)};
+            const F4 tol4 = {tol, tol, tol, tol}, fa4 = {first.a, first.a, first.a, first.a};
+            const F4 gq4 = {first.gq, first.gq, first.gq, first.gq};
+            const float level = first.a + zref;
+            const F4 level4 = {level, level, level, level};
+            I4 below = {0, 0, 0, 0};
+            unsigned any_flag = 0;
+            uint8_t* __restrict flags = win_flags_.data();  // per vector: the lanes off or near the band
+            for (int r = 0; r < nr; ++r) {
+                const float fp = static_cast<float>(plo + 2 * r - i), gp = first.gp * fp;
+                const F4 gp4 = {gp, gp, gp, gp};
+                for (int c = 0; c < nv; ++c) {
+                    const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
+                    const F4 x = load4(v + at), gqq = gq4 * load4(fq + 4 * c);
+                    const F4 d = abs4(x - ((fa4 + gp4) + gqq));
+                    const unsigned flag = lane_bits((d > bandf) | (abs4(d - bandf) <= tol4));
+                    flags[at / 4] = static_cast<uint8_t>(flag);
+                    any_flag |= flag;
+                    const F4 l = x + (zr - (gp4 + gqq));
+                    store4(lev + at, l);
+                    below -= l < level4;
                 }
             }
-            const PlaneFit fit = plane_from_moments(m, &first);
-            // Levelled: each point less the plane's slope (unknown points stay NaN).
-            {
-                const F4 gq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
+            bool subtracted = false;
+            if (any_flag) {  // the flagged points tested as the reference, in its order
+                const double fa = first.a, fgp = first.gp, fgq = first.gq;
+                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv); ++vec)
+                    for (unsigned lanes = flags[vec]; lanes != 0; lanes &= lanes - 1) {
+                        const std::size_t at = vec * 4 + static_cast<std::size_t>(__builtin_ctz(lanes));
+                        const int r = static_cast<int>(vec / static_cast<std::size_t>(nv));
+                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % (4 * static_cast<std::size_t>(nv))];
+                        const double x = v[at];
+                        if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
+                        subtracted = true;
+                        m.s0 -= 1;
+                        m.sp -= p;
+                        m.sq -= q;
+                        m.spp -= p * p;
+                        m.sqq -= q * q;
+                        m.spq -= p * q;
+                        m.sz -= x;
+                        m.spz -= p * x;
+                        m.sqz -= q * x;
+                    }
+            }
+            PlaneFit fit = first;
+            std::size_t below_level = static_cast<std::size_t>(below[0] + below[1] + below[2] + below[3]);
+            if (subtracted) {
+                // Levelled again along the second plane (each point less its slope; unknown
+                // points stay NaN), counted again below its level.
+                fit = plane_from_moments(m, &first);
+                const F4 fgq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
+                const float fit_level = fit.a + zref;
+                const F4 fit_level4 = {fit_level, fit_level, fit_level, fit_level};
+                I4 fit_below = {0, 0, 0, 0};
                 for (int r = 0; r < nr; ++r) {
                     const float gp = fit.gp * static_cast<float>(plo + 2 * r - i);
                     const F4 gp4 = {gp, gp, gp, gp};
                     for (int c = 0; c < nv; ++c) {
-                        float* at = v + (static_cast<std::size_t>(r) * nv + c) * 4;
-                        store4(at, load4(at) + (zr - (gp4 + gq4 * load4(fq + 4 * c))));
+                        const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
+                        const F4 l = load4(v + at) + (zr - (gp4 + fgq4 * load4(fq + 4 * c)));
+                        store4(lev + at, l);
+                        fit_below -= l < fit_level4;
                     }
                 }
+                below_level = static_cast<std::size_t>(fit_below[0] + fit_below[1] + fit_below[2] + fit_below[3]);
             }
             const std::size_t points = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv) * 4;
-            lattice_[static_cast<std::size_t>(a) * ly + b] =
-                select_rank(v, points, count, ground_rank(count), fit.a + zref, 0.01f, win_sel_.data());
+            lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lev, points, count, ground_rank(count),
+                                                                         fit.a + zref, below_level, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
         }
     }
-    interpolate_ground(g, known_, lattice_, lattice_slope_, ground);
+    interpolate_ground_squares(g, known_, square_known_, lattice_, lattice_slope_, ground);
 }
 
 void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, TraversabilityLayers& out)
@@ -491,13 +569,15 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // 2. Steps and drops against the cells within step_radius (the cell itself included):
     // step = own top - lowest bottom around; drop = highest mean around - own bottom.
     const int hs = half_width(c.step_radius_m, g.resolution_m);
-    tmp_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(bottom_[k]) ? kInf : bottom_[k];
-    window_extreme<true>(tmp_, nx, ny, hs, window_, lowest_);
-    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(top_[k]) ? -kInf : g.mean_z_m[k];
-    window_extreme<false>(tmp_, nx, ny, hs, window_, highest_);
-    for (std::size_t k = 0; k < n; ++k) tmp_[k] = std::isnan(top_[k]) ? kInf : g.mean_z_m[k];
-    window_extreme<true>(tmp_, nx, ny, hs, window_, lowest_mean_);
+    {
+        const float *top = top_.data(), *bottom = bottom_.data(), *mean = g.mean_z_m.data();
+        window_extreme<true>([=](std::size_t k) { return std::isnan(bottom[k]) ? kInf : bottom[k]; }, nx, ny, hs,
+                             window_, lowest_);
+        window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
+                              window_, highest_);
+        window_extreme<true>([=](std::size_t k) { return std::isnan(top[k]) ? kInf : mean[k]; }, nx, ny, hs, window_,
+                             lowest_mean_);
+    }
     edge_.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
         if (std::isnan(top_[k])) continue;
@@ -568,56 +648,69 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // slope_reference() is the same fit written window by window.
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
-    const std::size_t w = static_cast<std::size_t>(ny);
+    const std::size_t w = static_cast<std::size_t>(ny), w4 = (w + 3) / 4 * 4, hw = static_cast<std::size_t>(hp);
     // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
-    // each computed as the column pass first needs it.
+    // each computed as the column pass first needs it; rows at a stride of whole vectors.
     const int span = 2 * hp + 1;
-    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w);
-    auto rows = [&](int which, int p) {
-        return &row_sums_[(static_cast<std::size_t>(p % span) * kRowSums + static_cast<std::size_t>(which)) * w];
-    };
+    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w4);
+    auto rows = [&](int p) { return &row_sums_[static_cast<std::size_t>(p % span) * kRowSums * w4]; };
     const float z0 = static_cast<float>(g.position_m.z());
-    line_w_.resize(w);
-    line_z_.resize(w);
-    line_o_.resize(w);
+    // A row's weights, heights and obstacle flags, padded with hp zeros on each side.
+    line_w_.assign(w4 + 2 * hw, 0.0f);
+    line_z_.assign(w4 + 2 * hw, 0.0f);
+    line_o_.assign(w4 + 2 * hw, 0.0f);
+    // Rows without a known cell have row sums of +0, which add nothing: they are skipped.
+    row_known_.resize(static_cast<std::size_t>(nx));
+    for (int i = 0; i < nx; ++i) {
+        const uint8_t* kr = &known_[i * w];
+        row_known_[static_cast<std::size_t>(i)] = std::find(kr, kr + w, 1) != kr + w;
+    }
     auto row_pass = [&](int i) {
-        std::fill(line_w_.begin(), line_w_.end(), 0.0f);
-        std::fill(line_z_.begin(), line_z_.end(), 0.0f);
-        std::fill(line_o_.begin(), line_o_.end(), 0.0f);
+        if (!row_known_[static_cast<std::size_t>(i)]) return;
+        float *lw = line_w_.data() + hw, *lz = line_z_.data() + hw, *lo = line_o_.data() + hw;
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
-            if (std::isnan(top_[k])) continue;
-            if (out.cell_class[k] != CellClass::traversable) {
-                line_o_[j] = 1.0f;
-                continue;
-            }
-            line_w_[j] = 1.0f;
-            line_z_[j] = g.mean_z_m[k] - z0;
+            const bool known = !std::isnan(top_[k]), counts = known && out.cell_class[k] == CellClass::traversable;
+            lw[j] = counts ? 1.0f : 0.0f;
+            lz[j] = counts ? g.mean_z_m[k] - z0 : 0.0f;
+            lo[j] = known && !counts ? 1.0f : 0.0f;
         }
-        for (int d = -hp; d <= hp; ++d)
-            (d == -hp ? add_row_tap<true> : add_row_tap<false>)(line_w_.data(), line_z_.data(), line_o_.data(),
-                                                                 rows(W, i), rows(WQ, i), rows(WQQ, i), rows(WZ, i),
-                                                                 rows(WZQ, i), rows(OBST, i), d, ny);
+        float* r = rows(i);
+        slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, w4, r + W * w4, r + WQ * w4, r + WQQ * w4,
+                       r + WZ * w4, r + WZQ * w4, r + OBST * w4);
     };
     int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
+    slope_rows_.resize(static_cast<std::size_t>(span));
+    slope_fd_.resize(static_cast<std::size_t>(span));
+    moments_.resize(w4 * 10);
     for (int i = 0; i < nx; ++i) {
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
-        moments_.resize(w * 10);
-        float *s0 = &moments_[0], *sp = &moments_[w], *spp = &moments_[2 * w], *sq = &moments_[3 * w];
-        float *sqq = &moments_[4 * w], *spq = &moments_[5 * w], *sz = &moments_[6 * w], *szp = &moments_[7 * w];
-        float *szq = &moments_[8 * w], *so = &moments_[9 * w];
-        for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p)
-            (p == std::max(0, i - hp) ? add_column_tap<true> : add_column_tap<false>)(
-                rows(W, p), rows(WQ, p), rows(WQQ, p), rows(WZ, p), rows(WZQ, p), rows(OBST, p), s0, sp, spp, sq, sqq,
-                spq, sz, szp, szq, so, static_cast<float>(p - i), w);
+        int nrows = 0;
+        for (int p = std::max(0, i - hp); p <= std::min(nx - 1, i + hp); ++p) {
+            if (!row_known_[static_cast<std::size_t>(p)]) continue;
+            slope_rows_[static_cast<std::size_t>(nrows)] = rows(p);
+            slope_fd_[static_cast<std::size_t>(nrows)] = static_cast<float>(p - i);
+            ++nrows;
+        }
+        // Only the cells from the row's first known one to its last need a slope.
+        const uint8_t* kr = &known_[i * w];
+        const int jlo = static_cast<int>(std::find(kr, kr + w, 1) - kr);
+        if (jlo == ny) continue;
+        int jhi = ny;
+        while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
+        slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
+                          (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
+        const float *s0 = &moments_[0], *sp = &moments_[w4], *spp = &moments_[2 * w4], *sq = &moments_[3 * w4];
+        const float *sqq = &moments_[4 * w4], *spq = &moments_[5 * w4], *sz = &moments_[6 * w4];
+        const float *szp = &moments_[7 * w4], *szq = &moments_[8 * w4], *so = &moments_[9 * w4];
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
         // and no call, so that it vectorises; the arc tangent follows.
         tangent_.resize(w);
         float* __restrict tangent = tangent_.data();
-        for (int j = 0; j < ny; ++j) {
+        for (int j = jlo; j < jhi; ++j) {
             const double c0 = s0[j];
             const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
             const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
@@ -627,7 +720,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
             tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
         }
-        for (int j = 0; j < ny; ++j) {
+        for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
             if (so[j] > 0.5f) edge_[k] |= kObstacleNear;

@@ -44,4 +44,11 @@ PlaneFit plane_from_moments(const PlaneMoments& m, const PlaneFit* previous);
 void interpolate_ground(const TerrainGrid& g, const std::vector<uint8_t>& known, const std::vector<float>& lattice,
                         const std::vector<std::array<float, 2>>& lattice_slope, std::vector<float>& ground);
 
+// interpolate_ground, the same floats, a lattice square at a time: the three cells of a
+// square's row in one vector (they share the square's corners). square_known: per square
+// (a * ly + b), whether it holds a known cell (the others are left NaN).
+void interpolate_ground_squares(const TerrainGrid& g, const std::vector<uint8_t>& known,
+                                const std::vector<uint8_t>& square_known, const std::vector<float>& lattice,
+                                const std::vector<std::array<float, 2>>& lattice_slope, std::vector<float>& ground);
+
 }  // namespace ugv::traverse

@@ -154,3 +154,40 @@ TEST_CASE("bad arc sets are refused")
     f.front_x_m = -1;
     CHECK_THROWS(CandidateArcs(ArcSetConfig{}, f, 0.2));
 }
+
+TEST_CASE("the verdicts stay the same when the marks of counted cells wrap")
+{
+    // Each judgement marks the map cells an arc counts with the arc's 16-bit stamp, which
+    // wraps after 65535 arcs. One short arc: a map judged once, then 65534 maps that lie
+    // wholly outside the sweep (nothing marked), then the first again: its stamp is again
+    // the value its first judgement left in the cells, which must not count as marked.
+    TerrainGrid g = empty_grid(40, 40);
+    fill(g, [](double x, double y) { return 1.5 + (x >= 2.4 && x < 3.0 && std::abs(y) < 0.3 ? 0.5 : 0.0); });
+    for (int i = 0; i < g.nx; ++i)
+        for (int j = 0; j < g.ny; ++j)
+            if ((i * 7 + j * 13) % 5 == 0) {
+                const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
+                g.count[k] = 0;
+                g.mean_z_m[k] = g.max_z_m[k] = g.min_z_m[k] = g.variance_z_m2[k] = NAN;
+            }
+    TerrainGrid away = g;
+    away.origin_x_m = 1000.0;
+    ArcSetConfig ac;
+    ac.count = 1;
+    ac.length_m = 1.0;
+    CellClassifier cls{ClassifierConfig{}};
+    TraversabilityLayers l;
+    cls.classify(g, Odometer{}, l);
+    const CandidateArcs arcs(ac, Footprint{}, g.resolution_m);
+    Judged first, again;
+    arcs.judge(g, l, first.arcs, first.best);
+    for (int n = 0; n < 65534; ++n) arcs.judge(away, l, again.arcs, again.best);
+    CHECK(again.arcs[0].unknown_fraction == 1.0);  // all outside
+    arcs.judge(g, l, again.arcs, again.best);
+    CHECK(first.arcs[0].blocked);
+    CHECK(first.arcs[0].unknown_fraction > 0.0);
+    CHECK(first.arcs[0].unknown_fraction < 1.0);
+    CHECK(again.arcs[0].clear_distance_m == first.arcs[0].clear_distance_m);
+    CHECK(again.arcs[0].unknown_fraction == first.arcs[0].unknown_fraction);
+    CHECK(again.arcs[0].mean_cost == first.arcs[0].mean_cost);
+}

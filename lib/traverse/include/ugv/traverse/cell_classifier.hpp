@@ -62,17 +62,22 @@ private:
 
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
-    std::vector<float> top_, bottom_, lowest_, highest_, lowest_mean_, tmp_, lattice_;
+    std::vector<float> top_, bottom_, lowest_, highest_, lowest_mean_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
-    std::vector<uint8_t> edge_, known_;
-    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_;
+    std::vector<uint8_t> edge_, known_, row_known_;
+    std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
+    std::vector<const float*> slope_rows_;
     std::vector<float> window_;
-    // The local ground's: known flags (double), the means split by column parity, a lattice
-    // row's column sums, a window's points (rows padded to vectors of 4, NaN where unknown),
-    // its columns' offsets and which lanes hold a column, the values gathered for the
-    // percentile's last step; per lane (two doubles): the columns' offsets and the heights' sums.
-    std::vector<double> known_d_, column_sums_;
-    std::vector<float> parity_means_, win_v_, win_q_, win_sel_;
+    // The local ground's: known flags (float), a lattice row's column sums, the means split
+    // by column parity, a window's points (rows padded to vectors of 4, NaN where unknown)
+    // and the same levelled, its columns' offsets and which lanes hold a column, the values
+    // gathered for the percentile's last step; per lattice square, whether it holds a known
+    // cell; per lattice point, whether a known cell reads it; per vector of a window, the
+    // lanes to test again in double; per lane (two doubles): the columns' offsets and the
+    // heights' sums.
+    std::vector<float> known_f_, column_sums_;
+    std::vector<float> parity_means_, win_v_, win_lev_, win_q_, win_sel_;
+    std::vector<uint8_t> square_known_, needed_, win_flags_;
     std::vector<int32_t> lane_known_;
     using Lanes = double __attribute__((vector_size(16)));
     std::vector<Lanes> lane_q_, lane_z_, lane_pz_;
