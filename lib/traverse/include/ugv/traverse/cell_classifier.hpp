@@ -67,6 +67,7 @@ private:
     std::vector<uint8_t> edge_, known_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_;
     std::vector<float> window_;
+    TerrainGrid levels_;  // the heights the local ground is taken over (cell_level), in mean_z_m
     // The local ground's: known flags (double), the means split by column parity, a lattice
     // row's column sums, a window's points (rows padded to vectors of 4, NaN where unknown),
     // its columns' offsets and which lanes hold a column, the values gathered for the
@@ -90,8 +91,8 @@ double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& 
 
 // The local ground the classifier uses (docs/traverse.md, section 1, step 4), written plainly:
 // ground := under each cell with known[k] true, the level interpolated from the lattice
-// points' planes and 40th percentiles over the known cells within radius_m. The
-// classifier's is tested against it.
+// points' planes and 40th percentiles of grid.mean_z_m over the known cells within radius_m
+// (the classifier passes its cells' levels there). The classifier's is tested against it.
 void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known, double radius_m,
                             double max_step_m, std::vector<float>& ground);
 
