@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -146,7 +147,8 @@ bool is_obstacle(TruthClass c) { return c == TruthClass::obstacle || c == TruthC
 // For telling whether the laser sampled the obstacle (an obstacle is a height against a
 // local ground, so both must have been sampled): a step obstacle needs a sample in the cell
 // at `above` or higher and one within the ground radius at `ground_below` or lower (the lowest
-// of its step columns' local ground + max_step, and that ground + max_step / 2); a slope
+// of its step columns' local ground + max_step, and that ground + max_step / 2, the ground
+// taken over the columns the map knows: a column that is no step over those is not counted); a slope
 // obstacle needs only a sample in the cell (`above` = -inf); a negative cell needs a sample
 // in it at `below` or lower (the highest of its columns' ground - max_drop) and one around
 // at `ground_above` or higher (that ground - max_drop / 2).
@@ -167,6 +169,9 @@ CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i,
     const int n = std::max(1, static_cast<int>(std::ceil(res / f.resolution_m - 1e-6)));
     const Eigen::Vector2d c = map.centre_world(i, j);
     CellTruth out;
+    const std::function<bool(int, int)> seen_column = [&](int a, int b) {
+        return map.known_at({f.cell_x(a), f.cell_y(b)});
+    };
     for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
             const Eigen::Vector2d p = c + map.axis_i() * (res * ((a + 0.5) / n - 0.5)) +
@@ -178,8 +183,14 @@ CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i,
             if (t == TruthClass::obstacle) {
                 out.cls = t;
                 if (f.at(ci, cj) - ground >= r.max_step_m - kSampleTolerance) {
-                    out.above = std::min(out.above, ground + r.max_step_m);
-                    out.ground_below = std::max(out.ground_below, ground + 0.5 * r.max_step_m);
+                    // Sampled only if it stands max_step above the ground the laser has seen
+                    // around it: behind a ramp's high edge the lower ground lies in the
+                    // edge's shadow, and the ramp's top is no step over what was seen.
+                    const double seen = truth.ground_height_seen(ci, cj, seen_column);
+                    if (f.at(ci, cj) - seen >= r.max_step_m - kSampleTolerance) {
+                        out.above = std::min(out.above, seen + r.max_step_m);
+                        out.ground_below = std::max(out.ground_below, seen + 0.5 * r.max_step_m);
+                    }
                 } else {
                     out.above = -std::numeric_limits<double>::infinity();
                 }

@@ -90,22 +90,41 @@ double TruthTerrain::ground_height(int i, int j) const
     const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(f.ny) + static_cast<std::size_t>(j);
     if (ground_done_[k] != 0) return ground_cache_[k];
     ground_done_[k] = 1;
+    return ground_cache_[k] = ground_over(i, j, nullptr);
+}
+
+double TruthTerrain::ground_height_seen(int i, int j, const std::function<bool(int, int)>& seen) const
+{
+    const simworld::HeightField& f = *field_;
+    if (i < 0 || i >= f.nx || j < 0 || j >= f.ny) return std::numeric_limits<double>::quiet_NaN();
+    return ground_over(i, j, &seen);
+}
+
+double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int)>* seen) const
+{
+    const simworld::HeightField& f = *field_;
     const double z = f.at(i, j);
-    if (!std::isfinite(z)) return ground_cache_[k] = std::numeric_limits<double>::quiet_NaN();
+    if (!std::isfinite(z)) return std::numeric_limits<double>::quiet_NaN();
     // The columns within ground_radius (every third), the plane through them by least
     // squares, its slope taken out, and the median of what is left (a box or ditch narrower
     // than the radius is the minority; a slope is its own ground).
-    around_.clear();
-    offsets_.clear();
+    // Buffers of its own for the seen ground: step_class below computes other columns' grounds.
+    std::vector<float>& around = seen != nullptr ? around_seen_ : around_;
+    std::vector<std::pair<int, int>>& offsets = seen != nullptr ? offsets_seen_ : offsets_;
+    around.clear();
+    offsets.clear();
     double s0 = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, sz = 0, saz = 0, sbz = 0;
     for (const auto& [di, dj] : ground_disc_) {
         const int a = i + di, b = j + dj;
         if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
         const double h = f.at(a, b);
         if (!std::isfinite(h)) continue;
+        // The seen ground: of the columns the laser has seen, those that are not obstacles
+        // themselves (a wall seen from one side would tilt the plane of the ground before it).
+        if (seen != nullptr && !((*seen)(a, b) && step_class(a, b) == TruthClass::traversable)) continue;
         const double dz = h - z;
-        around_.push_back(static_cast<float>(dz));
-        offsets_.emplace_back(di, dj);
+        around.push_back(static_cast<float>(dz));
+        offsets.emplace_back(di, dj);
         s0 += 1;
         sa += di;
         sb += dj;
@@ -123,15 +142,16 @@ double TruthTerrain::ground_height(int i, int j) const
         ga = (cbb * (saz - sa * sz / s0) - cab * (sbz - sb * sz / s0)) / det;
         gb = (caa * (sbz - sb * sz / s0) - cab * (saz - sa * sz / s0)) / det;
     }
-    for (std::size_t u = 0; u < around_.size(); ++u)
-        around_[u] -= static_cast<float>(ga * offsets_[u].first + gb * offsets_[u].second);
+    for (std::size_t u = 0; u < around.size(); ++u)
+        around[u] -= static_cast<float>(ga * offsets[u].first + gb * offsets[u].second);
+    if (around.empty()) return seen != nullptr ? std::numeric_limits<double>::quiet_NaN() : z;
     double ground = z;
-    if (!around_.empty()) {
-        const auto mid = around_.begin() + static_cast<std::ptrdiff_t>(around_.size() / 2);
-        std::nth_element(around_.begin(), mid, around_.end());
+    {
+        const auto mid = around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2);
+        std::nth_element(around.begin(), mid, around.end());
         ground = z + static_cast<double>(*mid);
     }
-    return ground_cache_[k] = ground;
+    return ground;
 }
 
 TruthClass TruthTerrain::step_class(int i, int j) const

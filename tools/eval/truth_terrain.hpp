@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -44,6 +45,9 @@ public:
     // The local ground column (i, j) is judged against (the detrended median within
     // ground_radius_m); NaN outside the field or where its height is not finite.
     double ground_height(int i, int j) const;
+    // The same over the columns (a, b) for which seen(a, b) is true and which are no step
+    // obstacles themselves (NaN if there are none): the ground as far as the laser has seen it.
+    double ground_height_seen(int i, int j, const std::function<bool(int, int)>& seen) const;
     // Column indices of world point (x, y); false outside the field.
     bool column_of(double x_m, double y_m, int& i, int& j) const;
 
@@ -53,6 +57,7 @@ public:
 private:
     TruthClass step_class(int i, int j) const;  // by the height over the local ground alone
     TruthClass compute(int i, int j) const;
+    double ground_over(int i, int j, const std::function<bool(int, int)>* seen) const;
 
     std::shared_ptr<const simworld::HeightField> field_;
     TruthRules rules_;
@@ -67,6 +72,8 @@ private:
     mutable std::vector<uint8_t> ground_done_;
     mutable std::vector<float> around_;
     mutable std::vector<std::pair<int, int>> offsets_;
+    mutable std::vector<float> around_seen_;                  // the same for ground_height_seen
+    mutable std::vector<std::pair<int, int>> offsets_seen_;
 };
 
 }  // namespace ugv::eval

@@ -73,6 +73,16 @@ float supported_extreme(float mean, float extreme, float variance, int32_t count
     return near_extreme >= min_support ? extreme : mean;
 }
 
+// The height a known cell stands for in the local ground (docs/traverse.md section 1, step 4):
+// its mean, or its supported bottom (top) when the mean stands above (below) all its own samples.
+float cell_level(const TerrainGrid& g, std::size_t k, float top, float bottom)
+{
+    const float mean = g.mean_z_m[k];
+    if (g.max_z_m[k] == mean && g.min_z_m[k] < mean) return bottom;
+    if (g.min_z_m[k] == mean && g.max_z_m[k] > mean) return top;
+    return mean;
+}
+
 // How many of v[0, n) are below t (a loop that vectorises).
 std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 {
@@ -575,8 +585,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                              window_, lowest_);
         window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
                               window_, highest_);
-        window_extreme<true>([=](std::size_t k) { return std::isnan(top[k]) ? kInf : mean[k]; }, nx, ny, hs, window_,
-                             lowest_mean_);
     }
     edge_.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
@@ -587,7 +595,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
     // ground, a negative obstacle when its bottom lies max_drop below it. The local ground
-    // is taken on a lattice of every third cell: the 40th percentile of the means within
+    // is taken on a lattice of every third cell: the 40th percentile of the levels within
     // ground_radius (every other cell) once the slope of the plane through them is taken
     // out, so a box or ditch narrower than the radius is the minority and a slope is its own
     // ground, also where the window is cut by the map's edge or by unknown cells. (Below the
@@ -595,7 +603,24 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // what is known, would otherwise raise its own ground.)
     known_.resize(n);
     for (std::size_t k = 0; k < n; ++k) known_[k] = std::isnan(top_[k]) ? 0 : 1;
-    local_ground(g, c.ground_radius_m, c.max_step_m, out.ground_m);
+    // Over the cells' levels: the mean, unless it lies outside the cell's own samples (the
+    // terrain map then publishes it as the max or the min). Then other cells' spread shares
+    // moved it (docs/terrain.md, section 3.5: a wall's samples at range raise the means of
+    // the ground cells before it, never their lowest samples), and the level is the measured
+    // extreme on the other side: the bottom under a mean raised, the top over a mean lowered.
+    levels_.resolution_m = g.resolution_m;
+    levels_.nx = nx;
+    levels_.ny = ny;
+    levels_.mean_z_m.resize(n);
+    for (std::size_t k = 0; k < n; ++k) levels_.mean_z_m[k] = known_[k] ? cell_level(g, k, top_[k], bottom_[k]) : g.mean_z_m[k];
+    local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
+    // The lowest level within step_radius, for the vertical faces below.
+    {
+        const uint8_t* known = known_.data();
+        const float* level = levels_.mean_z_m.data();
+        window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
+                             lowest_mean_);
+    }
     const std::vector<float>& ground_ = out.ground_m;
     for (std::size_t k = 0; k < n; ++k) {
         if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
@@ -604,8 +629,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     }
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
-    // already a negative obstacle. The means must step too: the spread of passes seen with
-    // different pose errors moves a cell's extremes, not its mean.
+    // already a negative obstacle. The means must step too (the cell's mean over the lowest
+    // level around): the spread of passes seen with different pose errors moves a cell's
+    // extremes, not its mean.
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;

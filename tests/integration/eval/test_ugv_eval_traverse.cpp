@@ -350,6 +350,54 @@ TEST_CASE("ugv-eval traverse: the sampled recall counts only obstacles whose hei
     CHECK(std::isnan(r.get("sampled_recall")));
 }
 
+TEST_CASE("ugv-eval traverse: a ramp's top is sampled only when the ground behind its high edge was seen")
+{
+    // A 0.4 m ramp rising over x 4 .. 8 m (across the whole field), then a drop to the ground: the truth's
+    // local ground of the top's last half metre takes in the lower ground behind the edge.
+    test::TempDir dir;
+    simworld::HeightField f(-6.0, -11.0, kRes, 440, 440, 1.5f);
+    for (int i = 0; i < f.nx; ++i)
+        for (int j = 0; j < f.ny; ++j)
+            if (f.cell_x(i) > 4.0 && f.cell_x(i) < 8.0)
+                f.at(i, j) = static_cast<float>(1.5 + 0.1 * (f.cell_x(i) - 4.0));
+    test::write_file(dir / "truth.hf", simworld::encode_height_field(f));
+    // Every cell known and sampled at its columns' extremes; the map says traversable everywhere.
+    terrain_map_t t = source_map(1.5, {});
+    for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i * kN + j);
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) {
+                    const auto z = static_cast<float>(f.height_at(kOriginX + double(kCell) * i + kRes * (a + 0.5),
+                                                                  kOriginY + double(kCell) * j + kRes * (b + 0.5)));
+                    t.max_z[k] = std::max(a + b == 0 ? z : t.max_z[k], z);
+                    t.min_z[k] = std::min(a + b == 0 ? z : t.min_z[k], z);
+                }
+        }
+    std::vector<int8_t> cls(kN * kN, traversability_map_t::CLASS_TRAVERSABLE);
+    auto score = [&](const std::vector<int8_t>& c) {
+        const std::string log = dir / "t.lcm";
+        {
+            lcm::LogFile out(log, "w");
+            test::write_event(out, kUtime, "TERRAIN_MAP", t);
+            test::write_event(out, kUtime, "TRAVERSABILITY_MAP", trav_map(1.5, c));
+        }
+        return eval(dir, {"traverse", log, "--truth", dir / "truth.hf"});
+    };
+    Run seen = score(cls);
+    INFO(seen.out);
+    REQUIRE(seen.rc == 0);
+    CHECK(seen.get("obstacle_seen") > 0);  // the top's last cells, by the truth's ground
+    CHECK(seen.get("sampled") > 0);        // the ground behind the edge seen: a step over it
+    CHECK(seen.get("sampled_recall") == 0.0);
+    // The ground behind the edge in its shadow (unknown): the top is no step over what was seen.
+    area(cls, 8.0, kOriginY, 10.0, kOriginY + kN * double(kCell), traversability_map_t::CLASS_UNKNOWN);
+    Run shadowed = score(cls);
+    INFO(shadowed.out);
+    CHECK(shadowed.get("obstacle_seen") == seen.get("obstacle_seen"));
+    CHECK(shadowed.get("sampled") == 0);
+}
+
 TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unrestricted")
 {
     World w(1.5);

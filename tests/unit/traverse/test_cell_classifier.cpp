@@ -97,6 +97,46 @@ TEST_CASE("a wall's cell with a low mean but a high, well supported max is an ob
     CHECK(l.span_m[k] > 2.4f);
 }
 
+TEST_CASE("a wall at range whose spread samples raise the means before it is still an obstacle")
+{
+    // The wall's face in one row of cells (cy 3.0), nothing seen behind it. At 14 m its samples
+    // are spread (docs/terrain.md section 3.5): the ground cells before it hold shares of them
+    // in their means (0.15 m up, above all their own samples: the published max is the mean),
+    // never in their lowest samples (the ground's).
+    TerrainGrid g = empty_grid(90, 60);
+    fill(g, [](double, double) { return kGround; });
+    auto cell = [&](int i, int j, int n, double mean, double sd, double max, double min) {
+        const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
+        g.count[k] = n;
+        g.mean_z_m[k] = static_cast<float>(kGround + mean);
+        g.variance_z_m2[k] = static_cast<float>(sd * sd);
+        g.max_z_m[k] = static_cast<float>(kGround + max);
+        g.min_z_m[k] = static_cast<float>(kGround + min);
+    };
+    std::vector<std::size_t> face;
+    for (int i = 0; i < g.nx; ++i)
+        for (int j = 0; j < g.ny; ++j) {
+            const double x = cx(g, i), y = cy(g, j);
+            if (y > 3.05) {
+                cell(i, j, 0, NAN, NAN, NAN, NAN);
+            } else if (x > 8 && x < 14 && y > 2.95) {
+                cell(i, j, 16, 0.18, 0.105, 0.33, 0.17);
+                face.push_back(static_cast<std::size_t>(i) * g.ny + j);
+            } else if (x > 6 && x < 16 && y > 1.3) {
+                cell(i, j, 17, 0.15, 0.11, 0.15, 0.0);
+            }
+        }
+    const TraversabilityLayers l = classify(g);
+    int obstacles = 0;
+    for (std::size_t k : face) obstacles += l.cell_class[k] == CellClass::obstacle ? 1 : 0;
+    CHECK(obstacles == static_cast<int>(face.size()));
+    // The ground before it, its means raised, is not.
+    CHECK(l.cell_class[at(g, 11.0, 2.5)] == CellClass::traversable);
+    CHECK(l.cell_class[at(g, 11.0, 1.5)] == CellClass::traversable);
+    CHECK(count_class(l, CellClass::obstacle) == static_cast<int>(face.size()));
+    CHECK(l.ground_m[at(g, 11.0, 2.5)] < kGround + 0.05);
+}
+
 TEST_CASE("one stray sample does not make an obstacle")
 {
     TerrainGrid g = empty_grid(60, 60);

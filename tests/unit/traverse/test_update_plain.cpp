@@ -20,13 +20,6 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-float supported(float mean, float extreme, float var, int32_t count, double min_support)
-{
-    const double d = static_cast<double>(extreme) - mean;
-    if (std::abs(d) < 1e-4) return extreme;
-    return count * static_cast<double>(var) / (d * d) >= min_support ? extreme : mean;
-}
-
 // Section 1, steps 1-6 (docs/traverse.md) cell by cell. The slope is the update's own
 // (checked against slope_reference_deg within a tolerance: the fast sums are in float), so
 // that the classes and costs compare exactly.
@@ -59,7 +52,8 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
     std::vector<uint8_t> known(n), high(n), low(n);
     for (std::size_t k = 0; k < n; ++k) known[k] = std::isnan(top[k]) ? 0 : 1;
     std::vector<float> ground;
-    local_ground_reference(g, known, c.ground_radius_m, c.max_step_m, ground);
+    const TerrainGrid levels = ground_levels(g, known, c.min_support_samples);
+    local_ground_reference(levels, known, c.ground_radius_m, c.max_step_m, ground);
     l.ground_m = ground;
     std::vector<float> lowest_mean(n, kNaN);
     for (int i = 0; i < nx; ++i)
@@ -71,7 +65,7 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
                 if (!known[m]) return;
                 lowest = std::min(lowest, bottom[m]);
                 highest = std::max(highest, g.mean_z_m[m]);
-                lowest_m = std::min(lowest_m, g.mean_z_m[m]);
+                lowest_m = std::min(lowest_m, levels.mean_z_m[m]);
             });
             l.step_m[k] = std::max(0.0f, top[k] - lowest);
             l.drop_m[k] = std::max(0.0f, highest - bottom[k]);

@@ -3,12 +3,44 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
 #include "ugv_test/terrain_grid_builder.hpp"
 
 namespace ugv::traverse::test {
+
+// A cell's extreme (max or min) when min_support samples stand near it, else its mean
+// (docs/traverse.md section 1, step 2), written plainly.
+inline float supported(float mean, float extreme, float var, int32_t count, double min_support)
+{
+    const double d = static_cast<double>(extreme) - mean;
+    if (std::abs(d) < 1e-4) return extreme;
+    return count * static_cast<double>(var) / (d * d) >= min_support ? extreme : mean;
+}
+
+// The heights the local ground is taken over (section 1, step 4), in a grid's mean_z_m for
+// local_ground_reference: a known cell's mean, but its supported bottom when the mean stands
+// above all its own samples (published max = mean > min), its supported top when below them;
+// any other cell's mean.
+inline TerrainGrid ground_levels(const TerrainGrid& g, const std::vector<uint8_t>& known, double min_support)
+{
+    TerrainGrid levels;
+    levels.resolution_m = g.resolution_m;
+    levels.nx = g.nx;
+    levels.ny = g.ny;
+    levels.mean_z_m = g.mean_z_m;
+    for (std::size_t k = 0; k < g.cells(); ++k) {
+        if (!known[k]) continue;
+        const float var = std::isfinite(g.variance_z_m2[k]) ? g.variance_z_m2[k] : 0.0f, mean = g.mean_z_m[k];
+        if (g.max_z_m[k] == mean && g.min_z_m[k] < mean)
+            levels.mean_z_m[k] = supported(mean, g.min_z_m[k], var, g.count[k], min_support);
+        else if (g.min_z_m[k] == mean && g.max_z_m[k] > mean)
+            levels.mean_z_m[k] = supported(mean, g.max_z_m[k], var, g.count[k], min_support);
+    }
+    return levels;
+}
 
 // Like the demo's (150x150 at 0.2 m): rough ground, boxes, a wall, a ditch, the dead zone
 // and the shadows unknown.

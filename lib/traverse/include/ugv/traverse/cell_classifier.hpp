@@ -68,6 +68,7 @@ private:
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
+    TerrainGrid levels_;  // the heights the local ground is taken over (cell_level), in mean_z_m
     // The local ground's: known flags (float), a lattice row's column sums, the means split
     // by column parity, a window's points (rows padded to vectors of 4, NaN where unknown)
     // and the same levelled, its columns' offsets and which lanes hold a column, the values
@@ -95,8 +96,8 @@ double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& 
 
 // The local ground the classifier uses (docs/traverse.md, section 1, step 4), written plainly:
 // ground := under each cell with known[k] true, the level interpolated from the lattice
-// points' planes and 40th percentiles over the known cells within radius_m. The
-// classifier's is tested against it.
+// points' planes and 40th percentiles of grid.mean_z_m over the known cells within radius_m
+// (the classifier passes its cells' levels there). The classifier's is tested against it.
 void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known, double radius_m,
                             double max_step_m, std::vector<float>& ground);
 
