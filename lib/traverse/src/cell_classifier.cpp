@@ -619,7 +619,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         const uint8_t* known = known_.data();
         const float* level = levels_.mean_z_m.data();
         window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
-                             lowest_mean_);
+                             lowest_level_);
     }
     const std::vector<float>& ground_ = out.ground_m;
     for (std::size_t k = 0; k < n; ++k) {
@@ -635,7 +635,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k]) || out.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_mean_[k] < c.face_mean_step_m)
+            if (std::isnan(top_[k]) || out.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_level_[k] < c.face_mean_step_m)
                 continue;
             bool drop_beside = false;
             for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
