@@ -166,9 +166,13 @@ void WsServer::start()
     s.ep.init_asio(ec);
     if (ec) throw std::runtime_error(where + ": " + ec.message());
     s.ep.set_reuse_addr(true);
-    s.ep.set_socket_init_handler([](Handle, asio::ip::tcp::socket& sock) {
+    // Each message out at once: with Nagle, a pose waited for the ACK of the one before, which
+    // the client delays (20-40 ms). Set once accepted: the socket-init handler runs before the
+    // socket is open.
+    s.ep.set_tcp_pre_init_handler([&s](Handle h) {
         std::error_code e;
-        sock.set_option(asio::ip::tcp::no_delay(true), e);  // each message out at once
+        s.ep.get_con_from_hdl(h)->get_socket().set_option(asio::ip::tcp::no_delay(true), e);
+        if (e) ++s.counters.socket_errors;
     });
     s.ep.set_validate_handler([&s](Handle h) {
         auto con = s.ep.get_con_from_hdl(h);

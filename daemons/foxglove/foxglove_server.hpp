@@ -41,6 +41,7 @@ struct ServerCounters
     std::atomic<uint64_t> messages_dropped{0};  // frames not sent: the client's queue was full
     std::atomic<uint64_t> backlog_dropped{0};   // messages the server thread was too far behind to take
     std::atomic<uint64_t> client_errors{0};     // client operations refused (bad JSON, unknown channel, ...)
+    std::atomic<uint64_t> socket_errors{0};     // accepted sockets whose TCP_NODELAY could not be set
 
     template <class F>
     void visit(F&& f) const
@@ -54,6 +55,7 @@ struct ServerCounters
         f("messages_dropped", messages_dropped.load());
         f("backlog_dropped", backlog_dropped.load());
         f("client_errors", client_errors.load());
+        f("socket_errors", socket_errors.load());
     }
 };
 

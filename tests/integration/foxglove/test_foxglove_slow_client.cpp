@@ -163,6 +163,8 @@ TEST_CASE("a client that stops reading: memory bounded, drops counted, nothing e
 
     const int fd = stalled_client(kSlowPort, {"TERRAIN_MAP", "TERRAIN_MAP/grid"});
     REQUIRE(status.wait([](auto& c) { return c["subscriptions"] == 2; }, 10));
+    // TCP_NODELAY set on the accepted socket (without it, small messages wait for ACKs).
+    CHECK(status.counters.at("socket_errors") == 0);
     publish_maps(3, 30);  // fills the socket and the queue
     std::this_thread::sleep_for(std::chrono::seconds(1));
     const int64_t before_kb = rss_kb(bridge.pid());
