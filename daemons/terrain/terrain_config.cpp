@@ -65,8 +65,13 @@ TerrainConfig read_config(runtime::Config& cfg)
     m.spread_form = form == "exact" ? terrain::SpreadForm::exact
                     : form == "centred" ? terrain::SpreadForm::centred
                                         : terrain::SpreadForm::summed_area;
-    // The older key: true is the reference, whatever spread_form says.
-    if (cfg.get_bool("spread_exact", false)) m.spread_form = terrain::SpreadForm::exact;
+    // The older key: true is the reference; with another spread_form given, which one was
+    // meant is unclear, so it is refused rather than one silently overriding the other.
+    if (cfg.get_bool("spread_exact", false)) {
+        if (cfg.has("spread_form") && form != "exact")
+            cfg.fail("spread_exact", "true conflicts with spread_form = \"" + form + "\" (drop one of them)");
+        m.spread_form = terrain::SpreadForm::exact;
+    }
     m.min_variance_m2 = cfg.get_double("min_variance_m2", 1e-6, 1e-12, 1.0);
     m.pose_history_us = static_cast<int64_t>(std::llround(cfg.get_double("pose_history_s", 2.0, 0.1, 60.0) * 1e6));
     m.max_interpolation_span_s = cfg.get_double("max_interpolation_span_s", 0.1, 0.001, 1.0);

@@ -132,9 +132,12 @@ TEST_CASE("ugv-terrain --replay is deterministic and its map shows the box")
 
 TEST_CASE("ugv-terrain refuses a bad key with one line and exit status 2")
 {
-    // A value out of range, and a spreading form that does not exist.
+    // A value out of range, a spreading form that does not exist, and the older key against
+    // another form.
     const auto [line, key] = GENERATE(table<std::string, std::string>(
-        {{"publish_hz = 50.0", "publish_hz"}, {"spread_form = \"levels\"", "spread_form"}}));
+        {{"publish_hz = 50.0", "publish_hz"},
+         {"spread_form = \"levels\"", "spread_form"},
+         {"spread_exact = true\nspread_form = \"centred\"", "spread_exact"}}));
     test::TempDir dir;
     const std::string config = dir / "terrain.toml";
     test::write_file(config, line + "\n");
