@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <string>
@@ -45,12 +46,21 @@ double quantile(const std::vector<double>& sorted, double p)
 
 int main(int argc, char** argv)
 {
+    if (argc == 2 && std::string(argv[1]) == "--version") {
+        std::printf("ugv-test-foxglove-latency %s\n", UGV_VERSION);
+        return 0;
+    }
     if (argc < 4) {
         std::fprintf(stderr, "usage: %s ws://HOST:PORT SECONDS TOPIC...\n", argv[0]);
         return 2;
     }
     const std::string url = argv[1];
-    const double seconds = std::atof(argv[2]);
+    char* end = nullptr;
+    const double seconds = std::strtod(argv[2], &end);
+    if (end == argv[2] || *end != '\0' || !(seconds > 0)) {
+        std::fprintf(stderr, "ugv-test-foxglove-latency: SECONDS: '%s' is not a positive number\n", argv[2]);
+        return 2;
+    }
     std::map<std::string, Topic> topics;
     for (int i = 3; i < argc; ++i) topics[argv[i]];
     std::map<uint32_t, Topic*> by_subscription;
@@ -89,6 +99,13 @@ int main(int argc, char** argv)
         std::error_code ec;
         if (!subscribe["subscriptions"].empty()) client.send(h, subscribe.dump(), websocketpp::frame::opcode::text, ec);
     });
+    bool failed = false;
+    client.set_fail_handler([&](websocketpp::connection_hdl h) {
+        std::fprintf(stderr, "ugv-test-foxglove-latency: %s: %s\n", url.c_str(),
+                     client.get_con_from_hdl(h)->get_ec().message().c_str());
+        failed = true;
+        client.stop();
+    });
     std::error_code ec;
     Client::connection_ptr con = client.get_connection(url, ec);
     if (ec) {
@@ -100,6 +117,7 @@ int main(int argc, char** argv)
     asio::steady_timer stop(client.get_io_service(), std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
     stop.async_wait([&](const std::error_code&) { client.stop(); });
     client.run();
+    if (failed) return 2;
 
     int missing = 0;
     for (auto& [name, t] : topics) {
