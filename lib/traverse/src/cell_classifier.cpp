@@ -3,6 +3,7 @@
 #include "local_ground.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -83,12 +84,48 @@ float cell_level(const TerrainGrid& g, std::size_t k, float top, float bottom)
     return mean;
 }
 
+// The least float at or above x: for a float f, f >= float_at_least(x) iff double(f) >= x.
+float float_at_least(double x)
+{
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, kInf) : f;
+}
+
 // How many of v[0, n) are below t (a loop that vectorises).
 std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 {
     int32_t c = 0;
     for (std::size_t u = 0; u < n; ++u) c += v[u] < t ? 1 : 0;
     return static_cast<std::size_t>(c);
+}
+
+// What a stable sort of x[0, m) (m <= 12, no NaN) would put at r, or the first value (in
+// x's order) equal to it (+0 and -0): the x[a] with r in [less_a, less_a + equal_a) and no
+// equal value before it. Without a branch (the sorts' data-dependent branches were most of
+// the percentile's time): each x[b] compared with all, NaN in the unused lanes compares false.
+float rank_of_few(const float* x, std::size_t m, std::size_t r)
+{
+    float pad[12];
+    for (std::size_t e = 0; e < 12; ++e) pad[e] = e < m ? x[e] : kNaN;
+    const F4 a[3] = {load4(pad), load4(pad + 4), load4(pad + 8)};
+    const I4 idx[3] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {8, 9, 10, 11}};
+    I4 less[3] = {}, equal[3] = {}, before[3] = {};
+    for (int b = 0; b < 12; ++b) {
+        const F4 xb = {pad[b], pad[b], pad[b], pad[b]};
+        const I4 bb = {b, b, b, b};
+        for (int j = 0; j < 3; ++j) {
+            const I4 eq = xb == a[j];
+            less[j] -= xb < a[j];
+            equal[j] -= eq;
+            before[j] -= eq & (bb < idx[j]);
+        }
+    }
+    const int32_t ri = static_cast<int32_t>(r);
+    const I4 r4 = {ri, ri, ri, ri};
+    I4 pick = {};
+    for (int j = 0; j < 3; ++j)
+        pick |= (I4)a[j] & ((less[j] <= r4) & (r4 < less[j] + equal[j]) & (before[j] == I4{}));
+    return std::bit_cast<float>(pick[0] | pick[1] | pick[2] | pick[3]);
 }
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
@@ -149,15 +186,18 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
         std::nth_element(buf, buf + r, buf + m);
         return buf[r];
     }
-    for (std::size_t a = 1; a < m; ++a) {  // stable: equal values keep their order
-        const float x = buf[a];
-        std::size_t b = a;
-        for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
-        buf[b] = x;
+    if (m > kFew) {  // stable: equal values keep their order
+        for (std::size_t a = 1; a < m; ++a) {
+            const float x = buf[a];
+            std::size_t b = a;
+            for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
+            buf[b] = x;
+        }
+        std::size_t first = r;  // the first of a run of equal values (+0 and -0)
+        while (first > 0 && buf[first - 1] == buf[r]) --first;
+        return buf[first];
     }
-    std::size_t first = r;  // the first of a run of equal values (+0 and -0)
-    while (first > 0 && buf[first - 1] == buf[r]) --first;
-    return buf[first];
+    return rank_of_few(buf, m, r);
 }
 
 // out[k] = min (or max) of in(k) over the square window of half-width h around k; cells
@@ -551,8 +591,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
     const bool have_age = g.age_s.size() == n;
-    float memo_age = kNaN;  // cells fused from one cloud share an age
-    double memo_driven = 0.0;
+    float memo_age = kNaN;  // cells fused from one cloud share an age, so their certainty
+    double memo_certainty = 1.0;
     for (std::size_t k = 0; k < n; ++k) {
         if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
         // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
@@ -563,9 +603,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             const float age = g.age_s[k];
             if (age != memo_age) {
                 memo_age = age;
-                memo_driven = odometer.driven_since(age);
+                memo_certainty = std::max(0.0, 1.0 - age / c.max_age_s) *
+                                 std::max(0.0, 1.0 - odometer.driven_since(age) / c.max_driven_m);
             }
-            certainty = std::max(0.0, 1.0 - age / c.max_age_s) * std::max(0.0, 1.0 - memo_driven / c.max_driven_m);
+            certainty = memo_certainty;
         }
         out.certainty[k] = static_cast<float>(certainty);
         if (certainty <= 0.0) continue;  // decayed: UNKNOWN
@@ -586,11 +627,12 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
                               window_, highest_);
     }
-    edge_.assign(n, 0);
+    // Without a branch, so that it vectorises: NaN where unknown, as reset left it (a known
+    // cell has a top and a bottom, and the windows around it are finite).
     for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k])) continue;
-        out.step_m[k] = std::max(0.0f, top_[k] - lowest_[k]);
-        out.drop_m[k] = std::max(0.0f, highest_[k] - bottom_[k]);
+        const bool known = !std::isnan(top_[k]);
+        out.step_m[k] = known ? std::max(0.0f, top_[k] - lowest_[k]) : kNaN;
+        out.drop_m[k] = known ? std::max(0.0f, highest_[k] - bottom_[k]) : kNaN;
     }
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
@@ -602,7 +644,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // median: a wall seen only at its foot, in a line of well-sampled cells at the edge of
     // what is known, would otherwise raise its own ground.)
     known_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) known_[k] = std::isnan(top_[k]) ? 0 : 1;
     // Over the cells' levels: the mean, unless it lies outside the cell's own samples (the
     // terrain map then publishes it as the max or the min). Then other cells' spread shares
     // moved it (docs/terrain.md, section 3.5: a wall's samples at range raise the means of
@@ -612,7 +653,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     levels_.nx = nx;
     levels_.ny = ny;
     levels_.mean_z_m.resize(n);
-    for (std::size_t k = 0; k < n; ++k) levels_.mean_z_m[k] = known_[k] ? cell_level(g, k, top_[k], bottom_[k]) : g.mean_z_m[k];
+    for (std::size_t k = 0; k < n; ++k) {
+        known_[k] = std::isnan(top_[k]) ? 0 : 1;
+        levels_.mean_z_m[k] = known_[k] ? cell_level(g, k, top_[k], bottom_[k]) : g.mean_z_m[k];
+    }
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
     {
@@ -621,12 +665,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
                              lowest_level_);
     }
+    // Without a branch (an unknown cell or ground compares false), the limits as the least
+    // floats at or above them (the same verdicts as the comparisons in double).
     const std::vector<float>& ground_ = out.ground_m;
-    for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
-        if (top_[k] - ground_[k] >= c.max_step_m) edge_[k] |= kHigh;
-        if (ground_[k] - bottom_[k] >= c.max_drop_m) edge_[k] |= kLow;
-    }
+    const float max_step_f = float_at_least(c.max_step_m), max_drop_f = float_at_least(c.max_drop_m);
+    edge_.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+        edge_[k] = static_cast<uint8_t>((top_[k] - ground_[k] >= max_step_f ? kHigh : 0) |
+                                        (ground_[k] - bottom_[k] >= max_drop_f ? kLow : 0));
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
     // already a negative obstacle. The means must step too (the cell's mean over the lowest
@@ -635,8 +681,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k]) || out.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_level_[k] < c.face_mean_step_m)
-                continue;
+            // One branch, rarely taken (step is NaN where unknown, and compares false).
+            if (!((out.step_m[k] >= max_step_f) & !(g.mean_z_m[k] - lowest_level_[k] < c.face_mean_step_m))) continue;
             bool drop_beside = false;
             for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
                 for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
@@ -655,7 +701,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k])) continue;
+            const bool known = !std::isnan(top_[k]);
+            out.cell_class[k] = known ? CellClass::traversable : CellClass::unknown;
+            if (!(edge_[k] & (kHigh | kLow))) continue;  // rare (only known cells have them)
             CellClass cls = CellClass::traversable;
             const bool few = g.count[k] < c.min_support_samples;
             if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
