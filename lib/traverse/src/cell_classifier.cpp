@@ -1,6 +1,8 @@
 #include "ugv/traverse/cell_classifier.hpp"
 
+#include "classifier_kernels.hpp"
 #include "local_ground.hpp"
+#include "vec4.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -18,6 +20,9 @@ namespace ugv::traverse {
 
 namespace {
 
+using namespace vec4;
+using kernels::count_below;
+
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 // Bits of a cell's flags: its top max_step above the local ground (or a vertical face up
@@ -25,39 +30,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
 static_assert(kGroundStride == 3, "the lattice squares' flags are taken three cells at a time");
-
-// GCC/Clang vector extensions for the local ground's windows (what each lane computes is
-// the scalar expression's IEEE result, so the values do not depend on the vectors).
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
-using D2 = double __attribute__((vector_size(16)));
-
-F4 load4(const float* p)
-{
-    F4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-I4 load4(const int32_t* p)
-{
-    I4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
-F4 nan4() { return F4{kNaN, kNaN, kNaN, kNaN}; }
-D2 low2(F4 v) { return D2{v[0], v[1]}; }
-D2 high2(F4 v) { return D2{v[2], v[3]}; }
-F4 abs4(F4 v) { return (F4)((I4)v & I4{INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}); }
-// A comparison's mask as bits, lane e in bit e (SSE: one movmskps).
-unsigned lane_bits(I4 m)
-{
-#if defined(__SSE2__)
-    return static_cast<unsigned>(_mm_movemask_ps((__m128)m));
-#else
-    return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
-#endif
-}
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
@@ -89,14 +61,6 @@ float float_at_least(double x)
 {
     const float f = static_cast<float>(x);
     return static_cast<double>(f) < x ? std::nextafter(f, kInf) : f;
-}
-
-// How many of v[0, n) are below t (a loop that vectorises).
-std::size_t count_below(const float* __restrict v, std::size_t n, float t)
-{
-    int32_t c = 0;
-    for (std::size_t u = 0; u < n; ++u) c += v[u] < t ? 1 : 0;
-    return static_cast<std::size_t>(c);
 }
 
 // What a stable sort of x[0, m) (m <= 12, no NaN) would put at r, or the first value (in
@@ -163,17 +127,8 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
             step *= 2.0f;
         }
     }
-    // The values in [lo, hi), in v's order; rank k - below_lo among them. Four at a time
-    // tested, and the lanes that hold one gathered.
-    std::size_t m = 0, u = 0;
-    const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
-    for (; u + 4 <= n; u += 4)
-        for (unsigned in = lane_bits((load4(v + u) >= lo4) & (load4(v + u) < hi4)); in != 0; in &= in - 1)
-            buf[m++] = v[u + static_cast<std::size_t>(__builtin_ctz(in))];
-    for (; u < n; ++u) {
-        buf[m] = v[u];
-        m += v[u] >= lo && v[u] < hi ? 1 : 0;
-    }
+    // The values in [lo, hi), in v's order; rank k - below_lo among them.
+    const std::size_t m = kernels::gather_in(v, n, lo, hi, buf);
     const std::size_t r = k - below_lo;
     if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
         std::vector<float> copy;
@@ -776,24 +731,12 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
         slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
                           (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
-        const float *s0 = &moments_[0], *sp = &moments_[w4], *spp = &moments_[2 * w4], *sq = &moments_[3 * w4];
-        const float *sqq = &moments_[4 * w4], *spq = &moments_[5 * w4], *sz = &moments_[6 * w4];
-        const float *szp = &moments_[7 * w4], *szq = &moments_[8 * w4], *so = &moments_[9 * w4];
+        const float* so = &moments_[9 * w4];
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
-        // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
-        // and no call, so that it vectorises; the arc tangent follows.
+        // its steepest angle (classifier_kernels); the arc tangent follows.
         tangent_.resize(w);
-        float* __restrict tangent = tangent_.data();
-        for (int j = jlo; j < jhi; ++j) {
-            const double c0 = s0[j];
-            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
-            const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
-            const double ciz = szp[j] - c0 * mp * mz, cjz = szq[j] - c0 * mq * mz;
-            const double det = cii * cjj - cij * cij;
-            const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
-            const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
-            tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
-        }
+        const float* tangent = tangent_.data();
+        kernels::slope_tangents(moments_.data(), w4, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
         for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;

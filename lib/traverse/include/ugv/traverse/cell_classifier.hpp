@@ -88,6 +88,11 @@ private:
 
 namespace ugv::traverse {
 
+// Whether the classifier may use its AVX2 loops on a CPU that has AVX2 (the default); off,
+// it uses the 4-lane ones of the x86-64 baseline. The outputs are the same either way; the
+// tests turn it off to check the fallback on a machine with AVX2. Process-wide.
+void allow_avx2(bool allowed);
+
 // The slope the classifier reports, written plainly: the least-squares plane through the
 // means of the cells (p, q) with counts[p * ny + q] true in the square window of half-width
 // half_width around (i, j), and its steepest angle in degrees; NaN with fewer than half the
