@@ -46,16 +46,6 @@ float supported_extreme(float mean, float extreme, float variance, int32_t count
     return near_extreme >= min_support ? extreme : mean;
 }
 
-// The height a known cell stands for in the local ground (docs/traverse.md section 1, step 4):
-// its mean, or its supported bottom (top) when the mean stands above (below) all its own samples.
-float cell_level(const TerrainGrid& g, std::size_t k, float top, float bottom)
-{
-    const float mean = g.mean_z_m[k];
-    if (g.max_z_m[k] == mean && g.min_z_m[k] < mean) return bottom;
-    if (g.min_z_m[k] == mean && g.max_z_m[k] > mean) return top;
-    return mean;
-}
-
 // The least float at or above x: for a float f, f >= float_at_least(x) iff double(f) >= x.
 float float_at_least(double x)
 {
@@ -97,8 +87,8 @@ float rank_of_few(const float* x, std::size_t m, std::size_t r)
 // [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is found from guess
 // (below_guess = count_below(guess), which the caller counted) in steps that grow from
 // `step`, then narrowed at the level the counts point to until it holds few values; those
-// are gathered and the one of rank k among them picked by insertion sort (the first of equal values in v's order, as a running
-// minimum would). buf holds n values.
+// are gathered (kernels::gather_in) and the one of rank k among them picked by rank_of_few
+// (the first of equal values in v's order, as a stable sort would). buf holds n values.
 float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, std::size_t below_guess,
                   float step, float* __restrict buf)
 {
@@ -584,10 +574,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     }
     // Without a branch, so that it vectorises: NaN where unknown, as reset left it (a known
     // cell has a top and a bottom, and the windows around it are finite).
-    for (std::size_t k = 0; k < n; ++k) {
-        const bool known = !std::isnan(top_[k]);
-        out.step_m[k] = known ? std::max(0.0f, top_[k] - lowest_[k]) : kNaN;
-        out.drop_m[k] = known ? std::max(0.0f, highest_[k] - bottom_[k]) : kNaN;
+    {
+        const float *top = top_.data(), *bottom = bottom_.data(), *lowest = lowest_.data(), *highest = highest_.data();
+        float *__restrict step = out.step_m.data(), *__restrict drop = out.drop_m.data();
+        for (std::size_t k = 0; k < n; ++k) {
+            const float up = top[k] - lowest[k], down = highest[k] - bottom[k];  // std::max(0, x)
+            step[k] = top[k] == top[k] ? (0.0f < up ? up : 0.0f) : kNaN;
+            drop[k] = top[k] == top[k] ? (0.0f < down ? down : 0.0f) : kNaN;
+        }
     }
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
@@ -608,9 +602,19 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     levels_.nx = nx;
     levels_.ny = ny;
     levels_.mean_z_m.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        known_[k] = std::isnan(top_[k]) ? 0 : 1;
-        levels_.mean_z_m[k] = known_[k] ? cell_level(g, k, top_[k], bottom_[k]) : g.mean_z_m[k];
+    {
+        // Without a branch, so that it vectorises; unknown cells keep their mean.
+        const float *top = top_.data(), *bottom = bottom_.data(), *mean = g.mean_z_m.data();
+        const float *highest = g.max_z_m.data(), *lowest = g.min_z_m.data();
+        uint8_t* __restrict known = known_.data();
+        float* __restrict level = levels_.mean_z_m.data();
+        for (std::size_t k = 0; k < n; ++k) {
+            const float m = mean[k];
+            const bool raised = (highest[k] == m) & (lowest[k] < m), lowered = (lowest[k] == m) & (highest[k] > m);
+            const float own = raised ? bottom[k] : (lowered ? top[k] : m);
+            known[k] = top[k] == top[k] ? 1 : 0;
+            level[k] = top[k] == top[k] ? own : m;
+        }
     }
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
@@ -625,25 +629,37 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const std::vector<float>& ground_ = out.ground_m;
     const float max_step_f = float_at_least(c.max_step_m), max_drop_f = float_at_least(c.max_drop_m);
     edge_.resize(n);
-    for (std::size_t k = 0; k < n; ++k)
-        edge_[k] = static_cast<uint8_t>((top_[k] - ground_[k] >= max_step_f ? kHigh : 0) |
-                                        (ground_[k] - bottom_[k] >= max_drop_f ? kLow : 0));
+    {
+        const float *top = top_.data(), *bottom = bottom_.data(), *ground = ground_.data();
+        uint8_t* __restrict edge = edge_.data();
+        for (std::size_t k = 0; k < n; ++k)
+            edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step_f ? kHigh : 0) |
+                                           (ground[k] - bottom[k] >= max_drop_f ? kLow : 0));
+    }
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
     // already a negative obstacle. The means must step too (the cell's mean over the lowest
     // level around): the spread of passes seen with different pose errors moves a cell's
     // extremes, not its mean.
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            // One branch, rarely taken (step is NaN where unknown, and compares false).
-            if (!((out.step_m[k] >= max_step_f) & !(g.mean_z_m[k] - lowest_level_[k] < c.face_mean_step_m))) continue;
-            bool drop_beside = false;
-            for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
-                for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
-                    if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
-            if (!drop_beside) edge_[k] |= kHigh;
-        }
+    // The candidates flagged first, without a branch (step is NaN where unknown and compares
+    // false; the limits as floats, the same verdicts), then visited by memchr: they are few.
+    face_.resize(n);
+    {
+        const float face_step_f = float_at_least(c.face_mean_step_m);
+        const float *step = out.step_m.data(), *mean = g.mean_z_m.data(), *lowest_level = lowest_level_.data();
+        uint8_t* __restrict face = face_.data();
+        for (std::size_t k = 0; k < n; ++k)
+            face[k] = (step[k] >= max_step_f) & !(mean[k] - lowest_level[k] < face_step_f) ? 1 : 0;
+    }
+    for (const uint8_t *f = face_.data(), *end = face_.data() + n;
+         (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
+        const std::size_t k = static_cast<std::size_t>(f - face_.data());
+        const int i = static_cast<int>(k / static_cast<std::size_t>(ny)), j = static_cast<int>(k % static_cast<std::size_t>(ny));
+        bool drop_beside = false;
+        for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
+            for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
+                if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
+        if (!drop_beside) edge_[k] |= kHigh;
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
     // is too: one stray return alone is not.
