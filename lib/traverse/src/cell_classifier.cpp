@@ -33,19 +33,6 @@ static_assert(kGroundStride == 3, "the lattice squares' flags are taken three ce
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
-// The highest sample of a cell when enough samples stand near it, else the mean: one
-// stray return does not make a cell tall. Samples near the extreme, estimated from the
-// (weighted) variance: a fraction p of the samples at distance d from the mean gives a
-// variance of about p d^2, so p n ~ n var / d^2 (a face spread evenly gives n/3).
-float supported_extreme(float mean, float extreme, float variance, int32_t count, double min_support)
-{
-    const double d = static_cast<double>(extreme) - mean;
-    if (std::abs(d) < 1e-4) return extreme;
-    const double var = std::isfinite(variance) ? variance : 0.0;
-    const double near_extreme = count * var / (d * d);
-    return near_extreme >= min_support ? extreme : mean;
-}
-
 // The least float at or above x: for a float f, f >= float_at_least(x) iff double(f) >= x.
 float float_at_least(double x)
 {
@@ -531,13 +518,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const std::size_t n = g.cells();
     const ClassifierConfig& c = config_;
     out.reset(nx, ny);
-    top_.assign(n, kNaN);
-    bottom_.assign(n, kNaN);
+    top_.resize(n);  // both written in step 1
+    bottom_.resize(n);
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
     const bool have_age = g.age_s.size() == n;
     float memo_age = kNaN;  // cells fused from one cloud share an age, so their certainty
     double memo_certainty = 1.0;
+    measured_.assign(n, 0);  // measured and not decayed
     for (std::size_t k = 0; k < n; ++k) {
         if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
         // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
@@ -554,13 +542,15 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             certainty = memo_certainty;
         }
         out.certainty[k] = static_cast<float>(certainty);
-        if (certainty <= 0.0) continue;  // decayed: UNKNOWN
-        const float var = std::isfinite(g.variance_z_m2[k]) ? g.variance_z_m2[k] : 0.0f;
-        top_[k] = supported_extreme(g.mean_z_m[k], g.max_z_m[k], var, g.count[k], c.min_support_samples);
-        bottom_[k] = supported_extreme(g.mean_z_m[k], g.min_z_m[k], var, g.count[k], c.min_support_samples);
-        out.roughness_m[k] = std::sqrt(var);
-        out.span_m[k] = g.max_z_m[k] - g.min_z_m[k];
+        measured_[k] = certainty > 0.0 ? 1 : 0;  // else decayed: UNKNOWN
     }
+    // The highest sample of a cell when enough samples stand near it, else the mean: one
+    // stray return does not make a cell tall. Samples near the extreme, estimated from the
+    // (weighted) variance: a fraction p of the samples at distance d from the mean gives a
+    // variance of about p d^2, so p n ~ n var / d^2 (a face spread evenly gives n/3).
+    kernels::supported_extremes(n, g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(), g.variance_z_m2.data(),
+                                g.count.data(), measured_.data(), c.min_support_samples, top_.data(), bottom_.data(),
+                                out.roughness_m.data(), out.span_m.data());
 
     // 2. Steps and drops against the cells within step_radius (the cell itself included):
     // step = own top - lowest bottom around; drop = highest mean around - own bottom.

@@ -67,6 +67,38 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     }
 }
 
+[[gnu::always_inline]] inline float supported_extreme(float mean, float extreme, float variance, int32_t count,
+                                                     double min_support)
+{
+    const double d = static_cast<double>(extreme) - mean;
+    const double near_extreme = count * static_cast<double>(variance) / (d * d);
+    return (std::abs(d) < 1e-4) | (near_extreme >= min_support) ? extreme : mean;
+}
+
+// Without a branch, so that it vectorises (the quotient is computed also where it is not
+// used, and where the cell is not measured: selected away).
+[[gnu::always_inline]] inline void supported_extremes_body(std::size_t n, const float* __restrict mean,
+                                                           const float* __restrict highest,
+                                                           const float* __restrict lowest,
+                                                           const float* __restrict variance,
+                                                           const int32_t* __restrict count,
+                                                           const uint8_t* __restrict measured, double min_support,
+                                                           float* __restrict top, float* __restrict bottom,
+                                                           float* __restrict roughness, float* __restrict span)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const float v = variance[k], var = std::abs(v) <= std::numeric_limits<float>::max() ? v : 0.0f;
+        const float m = mean[k], hi = highest[k], lo = lowest[k];
+        const bool ok = measured[k] != 0;
+        const float t = supported_extreme(m, hi, var, count[k], min_support);
+        const float b = supported_extreme(m, lo, var, count[k], min_support), r = std::sqrt(var);
+        top[k] = ok ? t : kNaN;
+        bottom[k] = ok ? b : kNaN;
+        roughness[k] = ok ? r : kNaN;
+        span[k] = ok ? hi - lo : kNaN;
+    }
+}
+
 std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, float* __restrict buf)
 {
     // Four at a time tested, and the lanes that hold one gathered.
@@ -92,6 +124,16 @@ std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, flo
                                                         double min_cells, double resolution_m, float* tangent)
 {
     slope_tangents_body(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
+}
+
+[[gnu::target("avx2,popcnt")]] void supported_extremes_avx2(std::size_t n, const float* mean, const float* highest,
+                                                            const float* lowest, const float* variance,
+                                                            const int32_t* count, const uint8_t* measured,
+                                                            double min_support, float* top, float* bottom,
+                                                            float* roughness, float* span)
+{
+    supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
+                            span);
 }
 
 // Per mask of 8 lanes, the lanes set, first to last (then 0): a permutation that packs them.
@@ -159,6 +201,19 @@ void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min
     if (use_avx2()) return slope_tangents_avx2(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
 #endif
     slope_tangents_body(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
+}
+
+void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
+                        const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
+                        float* top, float* bottom, float* roughness, float* span)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2())
+        return supported_extremes_avx2(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom,
+                                       roughness, span);
+#endif
+    supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
+                            span);
 }
 
 }  // namespace kernels

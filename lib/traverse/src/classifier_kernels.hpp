@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace ugv::traverse::kernels {
 
@@ -24,5 +25,14 @@ std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* 
 // resolution_m, NaN with fewer than min_cells cells or cells (nearly) on a line.
 void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min_cells, double resolution_m,
                     float* tangent);
+
+// Step 1's supported extremes for the cells [0, n): where measured[k], top and bottom :=
+// the max (min) when min_support samples stand near it (n var / d^2, d its distance from the
+// mean, in double; the extreme itself within 1e-4 of the mean), else the mean; roughness :=
+// sqrt(variance) and span := max - min (a variance that is not finite counts as 0); NaN
+// where not measured.
+void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
+                        const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
+                        float* top, float* bottom, float* roughness, float* span);
 
 }  // namespace ugv::traverse::kernels

@@ -64,7 +64,7 @@ private:
     // Per-cell working layers, kept between calls so an update allocates nothing.
     std::vector<float> top_, bottom_, lowest_, highest_, lowest_level_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
-    std::vector<uint8_t> edge_, known_, row_known_, face_;
+    std::vector<uint8_t> measured_, edge_, known_, row_known_, face_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
