@@ -1,8 +1,11 @@
 #include "ugv/traverse/cell_classifier.hpp"
 
+#include "classifier_kernels.hpp"
 #include "local_ground.hpp"
+#include "vec4.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -17,6 +20,9 @@ namespace ugv::traverse {
 
 namespace {
 
+using namespace vec4;
+using kernels::count_below;
+
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 // Bits of a cell's flags: its top max_step above the local ground (or a vertical face up
@@ -25,70 +31,42 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
 static_assert(kGroundStride == 3, "the lattice squares' flags are taken three cells at a time");
 
-// GCC/Clang vector extensions for the local ground's windows (what each lane computes is
-// the scalar expression's IEEE result, so the values do not depend on the vectors).
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
-using D2 = double __attribute__((vector_size(16)));
-
-F4 load4(const float* p)
-{
-    F4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-I4 load4(const int32_t* p)
-{
-    I4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
-F4 nan4() { return F4{kNaN, kNaN, kNaN, kNaN}; }
-D2 low2(F4 v) { return D2{v[0], v[1]}; }
-D2 high2(F4 v) { return D2{v[2], v[3]}; }
-F4 abs4(F4 v) { return (F4)((I4)v & I4{INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}); }
-// A comparison's mask as bits, lane e in bit e (SSE: one movmskps).
-unsigned lane_bits(I4 m)
-{
-#if defined(__SSE2__)
-    return static_cast<unsigned>(_mm_movemask_ps((__m128)m));
-#else
-    return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
-#endif
-}
-
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
 
-// The highest sample of a cell when enough samples stand near it, else the mean: one
-// stray return does not make a cell tall. Samples near the extreme, estimated from the
-// (weighted) variance: a fraction p of the samples at distance d from the mean gives a
-// variance of about p d^2, so p n ~ n var / d^2 (a face spread evenly gives n/3).
-float supported_extreme(float mean, float extreme, float variance, int32_t count, double min_support)
+// The least float at or above x: for a float f, f >= float_at_least(x) iff double(f) >= x.
+float float_at_least(double x)
 {
-    const double d = static_cast<double>(extreme) - mean;
-    if (std::abs(d) < 1e-4) return extreme;
-    const double var = std::isfinite(variance) ? variance : 0.0;
-    const double near_extreme = count * var / (d * d);
-    return near_extreme >= min_support ? extreme : mean;
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, kInf) : f;
 }
 
-// The height a known cell stands for in the local ground (docs/traverse.md section 1, step 4):
-// its mean, or its supported bottom (top) when the mean stands above (below) all its own samples.
-float cell_level(const TerrainGrid& g, std::size_t k, float top, float bottom)
+// What a stable sort of x[0, m) (m <= 12, no NaN) would put at r, or the first value (in
+// x's order) equal to it (+0 and -0): the x[a] with r in [less_a, less_a + equal_a) and no
+// equal value before it. Without a branch (the sorts' data-dependent branches were most of
+// the percentile's time): each x[b] compared with all, NaN in the unused lanes compares false.
+float rank_of_few(const float* x, std::size_t m, std::size_t r)
 {
-    const float mean = g.mean_z_m[k];
-    if (g.max_z_m[k] == mean && g.min_z_m[k] < mean) return bottom;
-    if (g.min_z_m[k] == mean && g.max_z_m[k] > mean) return top;
-    return mean;
-}
-
-// How many of v[0, n) are below t (a loop that vectorises).
-std::size_t count_below(const float* __restrict v, std::size_t n, float t)
-{
-    int32_t c = 0;
-    for (std::size_t u = 0; u < n; ++u) c += v[u] < t ? 1 : 0;
-    return static_cast<std::size_t>(c);
+    float pad[12];
+    for (std::size_t e = 0; e < 12; ++e) pad[e] = e < m ? x[e] : kNaN;
+    const F4 a[3] = {load4(pad), load4(pad + 4), load4(pad + 8)};
+    const I4 idx[3] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {8, 9, 10, 11}};
+    I4 less[3] = {}, equal[3] = {}, before[3] = {};
+    for (int b = 0; b < 12; ++b) {
+        const F4 xb = {pad[b], pad[b], pad[b], pad[b]};
+        const I4 bb = {b, b, b, b};
+        for (int j = 0; j < 3; ++j) {
+            const I4 eq = xb == a[j];
+            less[j] -= xb < a[j];
+            equal[j] -= eq;
+            before[j] -= eq & (bb < idx[j]);
+        }
+    }
+    const int32_t ri = static_cast<int32_t>(r);
+    const I4 r4 = {ri, ri, ri, ri};
+    I4 pick = {};
+    for (int j = 0; j < 3; ++j)
+        pick |= (I4)a[j] & ((less[j] <= r4) & (r4 < less[j] + equal[j]) & (before[j] == I4{}));
+    return std::bit_cast<float>(pick[0] | pick[1] | pick[2] | pick[3]);
 }
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
@@ -96,8 +74,8 @@ std::size_t count_below(const float* __restrict v, std::size_t n, float t)
 // [lo, hi) that holds it (count_below(lo) <= k < count_below(hi)) is found from guess
 // (below_guess = count_below(guess), which the caller counted) in steps that grow from
 // `step`, then narrowed at the level the counts point to until it holds few values; those
-// are gathered and the one of rank k among them picked by insertion sort (the first of equal values in v's order, as a running
-// minimum would). buf holds n values.
+// are gathered (kernels::gather_in) and the one of rank k among them picked by rank_of_few
+// (the first of equal values in v's order, as a stable sort would). buf holds n values.
 float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t k, float guess, std::size_t below_guess,
                   float step, float* __restrict buf)
 {
@@ -126,17 +104,8 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
             step *= 2.0f;
         }
     }
-    // The values in [lo, hi), in v's order; rank k - below_lo among them. Four at a time
-    // tested, and the lanes that hold one gathered.
-    std::size_t m = 0, u = 0;
-    const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
-    for (; u + 4 <= n; u += 4)
-        for (unsigned in = lane_bits((load4(v + u) >= lo4) & (load4(v + u) < hi4)); in != 0; in &= in - 1)
-            buf[m++] = v[u + static_cast<std::size_t>(__builtin_ctz(in))];
-    for (; u < n; ++u) {
-        buf[m] = v[u];
-        m += v[u] >= lo && v[u] < hi ? 1 : 0;
-    }
+    // The values in [lo, hi), in v's order; rank k - below_lo among them.
+    const std::size_t m = kernels::gather_in(v, n, lo, hi, buf);
     const std::size_t r = k - below_lo;
     if (m != below_hi - below_lo || r >= m) {  // never seen (the counts say otherwise), kept as a guard
         std::vector<float> copy;
@@ -149,15 +118,18 @@ float select_rank(const float* v, std::size_t n, std::size_t finite, std::size_t
         std::nth_element(buf, buf + r, buf + m);
         return buf[r];
     }
-    for (std::size_t a = 1; a < m; ++a) {  // stable: equal values keep their order
-        const float x = buf[a];
-        std::size_t b = a;
-        for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
-        buf[b] = x;
+    if (m > kFew) {  // stable: equal values keep their order
+        for (std::size_t a = 1; a < m; ++a) {
+            const float x = buf[a];
+            std::size_t b = a;
+            for (; b > 0 && x < buf[b - 1]; --b) buf[b] = buf[b - 1];
+            buf[b] = x;
+        }
+        std::size_t first = r;  // the first of a run of equal values (+0 and -0)
+        while (first > 0 && buf[first - 1] == buf[r]) --first;
+        return buf[first];
     }
-    std::size_t first = r;  // the first of a run of equal values (+0 and -0)
-    while (first > 0 && buf[first - 1] == buf[r]) --first;
-    return buf[first];
+    return rank_of_few(buf, m, r);
 }
 
 // out[k] = min (or max) of in(k) over the square window of half-width h around k; cells
@@ -546,13 +518,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     const std::size_t n = g.cells();
     const ClassifierConfig& c = config_;
     out.reset(nx, ny);
-    top_.assign(n, kNaN);
-    bottom_.assign(n, kNaN);
+    top_.resize(n);  // both written in step 1
+    bottom_.resize(n);
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
     const bool have_age = g.age_s.size() == n;
-    float memo_age = kNaN;  // cells fused from one cloud share an age
-    double memo_driven = 0.0;
+    float memo_age = kNaN;  // cells fused from one cloud share an age, so their certainty
+    double memo_certainty = 1.0;
+    measured_.assign(n, 0);  // measured and not decayed
     for (std::size_t k = 0; k < n; ++k) {
         if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
         // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
@@ -563,18 +536,21 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             const float age = g.age_s[k];
             if (age != memo_age) {
                 memo_age = age;
-                memo_driven = odometer.driven_since(age);
+                memo_certainty = std::max(0.0, 1.0 - age / c.max_age_s) *
+                                 std::max(0.0, 1.0 - odometer.driven_since(age) / c.max_driven_m);
             }
-            certainty = std::max(0.0, 1.0 - age / c.max_age_s) * std::max(0.0, 1.0 - memo_driven / c.max_driven_m);
+            certainty = memo_certainty;
         }
         out.certainty[k] = static_cast<float>(certainty);
-        if (certainty <= 0.0) continue;  // decayed: UNKNOWN
-        const float var = std::isfinite(g.variance_z_m2[k]) ? g.variance_z_m2[k] : 0.0f;
-        top_[k] = supported_extreme(g.mean_z_m[k], g.max_z_m[k], var, g.count[k], c.min_support_samples);
-        bottom_[k] = supported_extreme(g.mean_z_m[k], g.min_z_m[k], var, g.count[k], c.min_support_samples);
-        out.roughness_m[k] = std::sqrt(var);
-        out.span_m[k] = g.max_z_m[k] - g.min_z_m[k];
+        measured_[k] = certainty > 0.0 ? 1 : 0;  // else decayed: UNKNOWN
     }
+    // The highest sample of a cell when enough samples stand near it, else the mean: one
+    // stray return does not make a cell tall. Samples near the extreme, estimated from the
+    // (weighted) variance: a fraction p of the samples at distance d from the mean gives a
+    // variance of about p d^2, so p n ~ n var / d^2 (a face spread evenly gives n/3).
+    kernels::supported_extremes(n, g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(), g.variance_z_m2.data(),
+                                g.count.data(), measured_.data(), c.min_support_samples, top_.data(), bottom_.data(),
+                                out.roughness_m.data(), out.span_m.data());
 
     // 2. Steps and drops against the cells within step_radius (the cell itself included):
     // step = own top - lowest bottom around; drop = highest mean around - own bottom.
@@ -586,11 +562,16 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
                               window_, highest_);
     }
-    edge_.assign(n, 0);
-    for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k])) continue;
-        out.step_m[k] = std::max(0.0f, top_[k] - lowest_[k]);
-        out.drop_m[k] = std::max(0.0f, highest_[k] - bottom_[k]);
+    // Without a branch, so that it vectorises: NaN where unknown, as reset left it (a known
+    // cell has a top and a bottom, and the windows around it are finite).
+    {
+        const float *top = top_.data(), *bottom = bottom_.data(), *lowest = lowest_.data(), *highest = highest_.data();
+        float *__restrict step = out.step_m.data(), *__restrict drop = out.drop_m.data();
+        for (std::size_t k = 0; k < n; ++k) {
+            const float up = top[k] - lowest[k], down = highest[k] - bottom[k];  // std::max(0, x)
+            step[k] = top[k] == top[k] ? (0.0f < up ? up : 0.0f) : kNaN;
+            drop[k] = top[k] == top[k] ? (0.0f < down ? down : 0.0f) : kNaN;
+        }
     }
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
@@ -602,7 +583,6 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // median: a wall seen only at its foot, in a line of well-sampled cells at the edge of
     // what is known, would otherwise raise its own ground.)
     known_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) known_[k] = std::isnan(top_[k]) ? 0 : 1;
     // Over the cells' levels: the mean, unless it lies outside the cell's own samples (the
     // terrain map then publishes it as the max or the min). Then other cells' spread shares
     // moved it (docs/terrain.md, section 3.5: a wall's samples at range raise the means of
@@ -612,7 +592,20 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     levels_.nx = nx;
     levels_.ny = ny;
     levels_.mean_z_m.resize(n);
-    for (std::size_t k = 0; k < n; ++k) levels_.mean_z_m[k] = known_[k] ? cell_level(g, k, top_[k], bottom_[k]) : g.mean_z_m[k];
+    {
+        // Without a branch, so that it vectorises; unknown cells keep their mean.
+        const float *top = top_.data(), *bottom = bottom_.data(), *mean = g.mean_z_m.data();
+        const float *highest = g.max_z_m.data(), *lowest = g.min_z_m.data();
+        uint8_t* __restrict known = known_.data();
+        float* __restrict level = levels_.mean_z_m.data();
+        for (std::size_t k = 0; k < n; ++k) {
+            const float m = mean[k];
+            const bool raised = (highest[k] == m) & (lowest[k] < m), lowered = (lowest[k] == m) & (highest[k] > m);
+            const float own = raised ? bottom[k] : (lowered ? top[k] : m);
+            known[k] = top[k] == top[k] ? 1 : 0;
+            level[k] = top[k] == top[k] ? own : m;
+        }
+    }
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
     {
@@ -621,28 +614,42 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
                              lowest_level_);
     }
+    // Without a branch (an unknown cell or ground compares false), the limits as the least
+    // floats at or above them (the same verdicts as the comparisons in double).
     const std::vector<float>& ground_ = out.ground_m;
-    for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k]) || std::isnan(ground_[k])) continue;
-        if (top_[k] - ground_[k] >= c.max_step_m) edge_[k] |= kHigh;
-        if (ground_[k] - bottom_[k] >= c.max_drop_m) edge_[k] |= kLow;
+    const float max_step_f = float_at_least(c.max_step_m), max_drop_f = float_at_least(c.max_drop_m);
+    edge_.resize(n);
+    {
+        const float *top = top_.data(), *bottom = bottom_.data(), *ground = ground_.data();
+        uint8_t* __restrict edge = edge_.data();
+        for (std::size_t k = 0; k < n; ++k)
+            edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step_f ? kHigh : 0) |
+                                           (ground[k] - bottom[k] >= max_drop_f ? kLow : 0));
     }
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
     // already a negative obstacle. The means must step too (the cell's mean over the lowest
     // level around): the spread of passes seen with different pose errors moves a cell's
     // extremes, not its mean.
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k]) || out.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_level_[k] < c.face_mean_step_m)
-                continue;
-            bool drop_beside = false;
-            for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
-                for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
-                    if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
-            if (!drop_beside) edge_[k] |= kHigh;
-        }
+    // The candidates flagged first, without a branch (step is NaN where unknown and compares
+    // false; the limits as floats, the same verdicts), then visited by memchr: they are few.
+    face_.resize(n);
+    {
+        const float face_step_f = float_at_least(c.face_mean_step_m);
+        const float *step = out.step_m.data(), *mean = g.mean_z_m.data(), *lowest_level = lowest_level_.data();
+        uint8_t* __restrict face = face_.data();
+        for (std::size_t k = 0; k < n; ++k)
+            face[k] = (step[k] >= max_step_f) & !(mean[k] - lowest_level[k] < face_step_f) ? 1 : 0;
+    }
+    for (const uint8_t *f = face_.data(), *end = face_.data() + n;
+         (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
+        const std::size_t k = static_cast<std::size_t>(f - face_.data());
+        const int i = static_cast<int>(k / static_cast<std::size_t>(ny)), j = static_cast<int>(k % static_cast<std::size_t>(ny));
+        bool drop_beside = false;
+        for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
+            for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
+                if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
+        if (!drop_beside) edge_[k] |= kHigh;
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
     // is too: one stray return alone is not.
@@ -655,7 +662,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            if (std::isnan(top_[k])) continue;
+            const bool known = !std::isnan(top_[k]);
+            out.cell_class[k] = known ? CellClass::traversable : CellClass::unknown;
+            if (!(edge_[k] & (kHigh | kLow))) continue;  // rare (only known cells have them)
             CellClass cls = CellClass::traversable;
             const bool few = g.count[k] < c.min_support_samples;
             if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
@@ -728,24 +737,12 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
         slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
                           (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
-        const float *s0 = &moments_[0], *sp = &moments_[w4], *spp = &moments_[2 * w4], *sq = &moments_[3 * w4];
-        const float *sqq = &moments_[4 * w4], *spq = &moments_[5 * w4], *sz = &moments_[6 * w4];
-        const float *szp = &moments_[7 * w4], *szq = &moments_[8 * w4], *so = &moments_[9 * w4];
+        const float* so = &moments_[9 * w4];
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
-        // its steepest angle; NaN with too few cells or cells (nearly) on a line. No branch
-        // and no call, so that it vectorises; the arc tangent follows.
+        // its steepest angle (classifier_kernels); the arc tangent follows.
         tangent_.resize(w);
-        float* __restrict tangent = tangent_.data();
-        for (int j = jlo; j < jhi; ++j) {
-            const double c0 = s0[j];
-            const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
-            const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
-            const double ciz = szp[j] - c0 * mp * mz, cjz = szq[j] - c0 * mq * mz;
-            const double det = cii * cjj - cij * cij;
-            const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
-            const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / g.resolution_m);
-            tangent[j] = c0 >= min_cells && !(det < 1e-6 * c0 * c0) ? t : kNaN;
-        }
+        const float* tangent = tangent_.data();
+        kernels::slope_tangents(moments_.data(), w4, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
         for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;

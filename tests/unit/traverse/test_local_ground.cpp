@@ -50,6 +50,9 @@ Comparison compare(const TerrainGrid& g, const ClassifierConfig& config)
 
 TEST_CASE("the fast local ground equals the plain one on random maps")
 {
+    const bool avx2 = GENERATE(true, false);
+    CAPTURE(avx2);
+    const Avx2Allowed allowed(avx2);
     std::mt19937 rng(20261202);
     int maps = 0;
     Comparison all;
@@ -76,6 +79,9 @@ TEST_CASE("the fast local ground equals the plain one on random maps")
 
 TEST_CASE("the fast local ground equals the plain one on the known-answer shapes")
 {
+    const bool avx2 = GENERATE(true, false);
+    CAPTURE(avx2);
+    const Avx2Allowed allowed(avx2);
     // Flat, a box, a wall, a ditch, a 35-degree ramp, each with the ground at 1.5 m.
     const std::vector<std::function<double(double, double)>> shapes = {
         [](double, double) { return 1.5; },

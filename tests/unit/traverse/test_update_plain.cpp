@@ -226,6 +226,9 @@ void compare_update(const TerrainGrid& g, const TraverseConfig& config)
 
 TEST_CASE("one update equals the plain classifier and arcs on the benchmark's map")
 {
+    const bool avx2 = GENERATE(true, false);
+    CAPTURE(avx2);
+    const Avx2Allowed allowed(avx2);
     const TerrainGrid g = demo_like_map();
     compare_update(g, TraverseConfig{});
     Traversability t{TraverseConfig{}};
@@ -238,6 +241,9 @@ TEST_CASE("one update equals the plain classifier and arcs on the benchmark's ma
 
 TEST_CASE("one update equals the plain classifier and arcs on random maps")
 {
+    const bool avx2 = GENERATE(true, false);
+    CAPTURE(avx2);
+    const Avx2Allowed allowed(avx2);
     std::mt19937 rng(424242);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     int maps = 0;
@@ -268,6 +274,9 @@ TEST_CASE("one update equals the plain classifier and arcs on random maps")
 
 TEST_CASE("one update equals the plain classifier and arcs on small, thin and cut maps")
 {
+    const bool avx2 = GENERATE(true, false);
+    CAPTURE(avx2);
+    const Avx2Allowed allowed(avx2);
     // Windows cut by every edge, rows of the ground's window that fill no whole vector of 4
     // (half-widths 2, 6 and 9), unknown holes, cells of spread shares only, aged and decayed
     // cells, heights near 0 where the floats are finest.

@@ -8,8 +8,20 @@
 #include <vector>
 
 #include "ugv_test/terrain_grid_builder.hpp"
+#include "ugv/traverse/cell_classifier.hpp"
 
 namespace ugv::traverse::test {
+
+// allow_avx2 for a test's scope, then back to the default: the comparisons run with the AVX2
+// loops and with the baseline ones (GENERATE(true, false)), so that neither goes untested
+// on a machine with AVX2.
+struct Avx2Allowed
+{
+    explicit Avx2Allowed(bool allowed) { allow_avx2(allowed); }
+    ~Avx2Allowed() { allow_avx2(true); }
+    Avx2Allowed(const Avx2Allowed&) = delete;
+    Avx2Allowed& operator=(const Avx2Allowed&) = delete;
+};
 
 // A cell's extreme (max or min) when min_support samples stand near it, else its mean
 // (docs/traverse.md section 1, step 2), written plainly.

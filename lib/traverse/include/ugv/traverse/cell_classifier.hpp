@@ -64,7 +64,7 @@ private:
     // Per-cell working layers, kept between calls so an update allocates nothing.
     std::vector<float> top_, bottom_, lowest_, highest_, lowest_level_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
-    std::vector<uint8_t> edge_, known_, row_known_;
+    std::vector<uint8_t> measured_, edge_, known_, row_known_, face_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
@@ -87,6 +87,11 @@ private:
 }  // namespace ugv::traverse
 
 namespace ugv::traverse {
+
+// Whether the classifier may use its AVX2 loops on a CPU that has AVX2 (the default); off,
+// it uses the 4-lane ones of the x86-64 baseline. The outputs are the same either way; the
+// tests turn it off to check the fallback on a machine with AVX2. Process-wide.
+void allow_avx2(bool allowed);
 
 // The slope the classifier reports, written plainly: the least-squares plane through the
 // means of the cells (p, q) with counts[p * ny + q] true in the square window of half-width

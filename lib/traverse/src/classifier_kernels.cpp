@@ -1,0 +1,221 @@
+#include "classifier_kernels.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "ugv/traverse/cell_classifier.hpp"
+#include "vec4.hpp"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define UGV_TRAVERSE_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace ugv::traverse {
+
+namespace {
+
+std::atomic<bool> g_avx2_allowed{true};
+
+bool cpu_has_avx2()
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+    return has;
+#else
+    return false;
+#endif
+}
+
+}  // namespace
+
+void allow_avx2(bool allowed) { g_avx2_allowed.store(allowed, std::memory_order_relaxed); }
+
+namespace kernels {
+
+namespace {
+
+using namespace vec4;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// The loops that the compiler vectorises by itself, written once: inlined into the baseline
+// and the AVX2 entry points, each compiled for its own lanes.
+[[gnu::always_inline]] inline std::size_t count_below_body(const float* __restrict v, std::size_t n, float t)
+{
+    int32_t c = 0;
+    for (std::size_t u = 0; u < n; ++u) c += v[u] < t ? 1 : 0;
+    return static_cast<std::size_t>(c);
+}
+
+[[gnu::always_inline]] inline void slope_tangents_body(const float* __restrict m, std::size_t w4, int jlo, int jhi,
+                                                       double min_cells, double resolution_m,
+                                                       float* __restrict tangent)
+{
+    const float *s0 = m, *sp = m + w4, *spp = m + 2 * w4, *sq = m + 3 * w4, *sqq = m + 4 * w4;
+    const float *spq = m + 5 * w4, *sz = m + 6 * w4, *szp = m + 7 * w4, *szq = m + 8 * w4;
+    // No branch and no call, so that it vectorises.
+    for (int j = jlo; j < jhi; ++j) {
+        const double c0 = s0[j];
+        const double mp = sp[j] / c0, mq = sq[j] / c0, mz = sz[j] / c0;
+        const double cii = spp[j] - c0 * mp * mp, cjj = sqq[j] - c0 * mq * mq, cij = spq[j] - c0 * mp * mq;
+        const double ciz = szp[j] - c0 * mp * mz, cjz = szq[j] - c0 * mq * mz;
+        const double det = cii * cjj - cij * cij;
+        const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
+        const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / resolution_m);
+        tangent[j] = (c0 >= min_cells) & !(det < 1e-6 * c0 * c0) ? t : kNaN;
+    }
+}
+
+[[gnu::always_inline]] inline float supported_extreme(float mean, float extreme, float variance, int32_t count,
+                                                     double min_support)
+{
+    const double d = static_cast<double>(extreme) - mean;
+    const double near_extreme = count * static_cast<double>(variance) / (d * d);
+    return (std::abs(d) < 1e-4) | (near_extreme >= min_support) ? extreme : mean;
+}
+
+// Without a branch, so that it vectorises (the quotient is computed also where it is not
+// used, and where the cell is not measured: selected away).
+[[gnu::always_inline]] inline void supported_extremes_body(std::size_t n, const float* __restrict mean,
+                                                           const float* __restrict highest,
+                                                           const float* __restrict lowest,
+                                                           const float* __restrict variance,
+                                                           const int32_t* __restrict count,
+                                                           const uint8_t* __restrict measured, double min_support,
+                                                           float* __restrict top, float* __restrict bottom,
+                                                           float* __restrict roughness, float* __restrict span)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const float v = variance[k], var = std::abs(v) <= std::numeric_limits<float>::max() ? v : 0.0f;
+        const float m = mean[k], hi = highest[k], lo = lowest[k];
+        const bool ok = measured[k] != 0;
+        const float t = supported_extreme(m, hi, var, count[k], min_support);
+        const float b = supported_extreme(m, lo, var, count[k], min_support), r = std::sqrt(var);
+        top[k] = ok ? t : kNaN;
+        bottom[k] = ok ? b : kNaN;
+        roughness[k] = ok ? r : kNaN;
+        span[k] = ok ? hi - lo : kNaN;
+    }
+}
+
+std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, float* __restrict buf)
+{
+    // Four at a time tested, and the lanes that hold one gathered.
+    std::size_t m = 0, u = 0;
+    const F4 lo4 = {lo, lo, lo, lo}, hi4 = {hi, hi, hi, hi};
+    for (; u + 4 <= n; u += 4)
+        for (unsigned in = lane_bits((load4(v + u) >= lo4) & (load4(v + u) < hi4)); in != 0; in &= in - 1)
+            buf[m++] = v[u + static_cast<std::size_t>(__builtin_ctz(in))];
+    for (; u < n; ++u) {
+        buf[m] = v[u];
+        m += v[u] >= lo && v[u] < hi ? 1 : 0;
+    }
+    return m;
+}
+
+#if defined(UGV_TRAVERSE_AVX2)
+[[gnu::target("avx2,popcnt")]] std::size_t count_below_avx2(const float* v, std::size_t n, float t)
+{
+    return count_below_body(v, n, t);
+}
+
+[[gnu::target("avx2,popcnt")]] void slope_tangents_avx2(const float* m, std::size_t w4, int jlo, int jhi,
+                                                        double min_cells, double resolution_m, float* tangent)
+{
+    slope_tangents_body(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
+}
+
+[[gnu::target("avx2,popcnt")]] void supported_extremes_avx2(std::size_t n, const float* mean, const float* highest,
+                                                            const float* lowest, const float* variance,
+                                                            const int32_t* count, const uint8_t* measured,
+                                                            double min_support, float* top, float* bottom,
+                                                            float* roughness, float* span)
+{
+    supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
+                            span);
+}
+
+// Per mask of 8 lanes, the lanes set, first to last (then 0): a permutation that packs them.
+struct PackTable
+{
+    alignas(32) int32_t lanes[256][8];
+    constexpr PackTable() : lanes{}
+    {
+        for (int mask = 0; mask < 256; ++mask) {
+            int e = 0;
+            for (int lane = 0; lane < 8; ++lane)
+                if (mask & (1 << lane)) lanes[mask][e++] = lane;
+        }
+    }
+};
+constexpr PackTable kPack{};
+
+// Eight at a time, without a branch: the lanes in range packed by a permutation and stored
+// (all eight: m <= u, so they fit in buf's n), the count advanced by the mask's bits.
+[[gnu::target("avx2,popcnt")]] std::size_t gather_in_avx2(const float* v, std::size_t n, float lo, float hi,
+                                                           float* __restrict buf)
+{
+    std::size_t m = 0, u = 0;
+    const __m256 lo8 = _mm256_set1_ps(lo), hi8 = _mm256_set1_ps(hi);
+    for (; u + 8 <= n; u += 8) {
+        const __m256 x = _mm256_loadu_ps(v + u);
+        const __m256 in = _mm256_and_ps(_mm256_cmp_ps(x, lo8, _CMP_GE_OQ), _mm256_cmp_ps(x, hi8, _CMP_LT_OQ));
+        const unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(in));
+        const __m256i perm = _mm256_load_si256(reinterpret_cast<const __m256i*>(kPack.lanes[mask]));
+        _mm256_storeu_ps(buf + m, _mm256_permutevar8x32_ps(x, perm));
+        m += static_cast<std::size_t>(__builtin_popcount(mask));
+    }
+    for (; u < n; ++u) {
+        buf[m] = v[u];
+        m += v[u] >= lo && v[u] < hi ? 1 : 0;
+    }
+    return m;
+}
+#endif
+
+}  // namespace
+
+bool use_avx2() { return cpu_has_avx2() && g_avx2_allowed.load(std::memory_order_relaxed); }
+
+std::size_t count_below(const float* v, std::size_t n, float t)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return count_below_avx2(v, n, t);
+#endif
+    return count_below_body(v, n, t);
+}
+
+std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* buf)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return gather_in_avx2(v, n, lo, hi, buf);
+#endif
+    return gather_in_sse(v, n, lo, hi, buf);
+}
+
+void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min_cells, double resolution_m,
+                    float* tangent)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return slope_tangents_avx2(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
+#endif
+    slope_tangents_body(m, w4, jlo, jhi, min_cells, resolution_m, tangent);
+}
+
+void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
+                        const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
+                        float* top, float* bottom, float* roughness, float* span)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2())
+        return supported_extremes_avx2(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom,
+                                       roughness, span);
+#endif
+    supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
+                            span);
+}
+
+}  // namespace kernels
+
+}  // namespace ugv::traverse

@@ -1,0 +1,38 @@
+// The classifier's hottest loops, each in two versions chosen at run time: 8 lanes (AVX2,
+// when the CPU has it and allow_avx2 has not turned it off) and 4 lanes (SSE2, the x86-64
+// baseline). Both give the same values to the bit: the same IEEE operations in the same
+// order per value, no fused multiply-add (the AVX2 versions do not enable FMA).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace ugv::traverse::kernels {
+
+// Whether the AVX2 versions run (the CPU has AVX2 and POPCNT, and allow_avx2 allows them).
+bool use_avx2();
+
+// How many of v[0, n) are below t (NaN is not).
+std::size_t count_below(const float* v, std::size_t n, float t);
+
+// The values of v[0, n) in [lo, hi), in v's order, into buf (which holds n floats);
+// returns how many.
+std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* buf);
+
+// The slope's tangent for the cells [jlo, jhi) of a row of windows: m holds the windows'
+// ten moments (s0, sp, spp, sq, sqq, spq, sz, szp, szq, so), w4 apart; the plane's gradient
+// from the centred moments (in double) and the tangent of its steepest angle over
+// resolution_m, NaN with fewer than min_cells cells or cells (nearly) on a line.
+void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min_cells, double resolution_m,
+                    float* tangent);
+
+// Step 1's supported extremes for the cells [0, n): where measured[k], top and bottom :=
+// the max (min) when min_support samples stand near it (n var / d^2, d its distance from the
+// mean, in double; the extreme itself within 1e-4 of the mean), else the mean; roughness :=
+// sqrt(variance) and span := max - min (a variance that is not finite counts as 0); NaN
+// where not measured.
+void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
+                        const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
+                        float* top, float* bottom, float* roughness, float* span);
+
+}  // namespace ugv::traverse::kernels
