@@ -37,7 +37,20 @@ struct PlaneFit
 
 // The least-squares plane of the moments; with fewer than 6 points, the previous fit (or
 // flat through 0 without one); level (gp = gq = 0) when the points lie (nearly) on a line.
-PlaneFit plane_from_moments(const PlaneMoments& m, const PlaneFit* previous);
+inline PlaneFit plane_from_moments(const PlaneMoments& m, const PlaneFit* previous)
+{
+    PlaneFit f;
+    if (m.s0 < 6) return previous ? *previous : f;
+    const double s0 = m.s0;
+    const double cpp = m.spp - m.sp * m.sp / s0, cqq = m.sqq - m.sq * m.sq / s0, cpq = m.spq - m.sp * m.sq / s0;
+    const double cpz = m.spz - m.sp * m.sz / s0, cqz = m.sqz - m.sq * m.sz / s0, det = cpp * cqq - cpq * cpq;
+    if (det > 1e-6 * s0 * s0) {
+        f.gp = static_cast<float>((cqq * cpz - cpq * cqz) / det);
+        f.gq = static_cast<float>((cpp * cqz - cpq * cpz) / det);
+    }
+    f.a = static_cast<float>((m.sz - f.gp * m.sp - f.gq * m.sq) / s0);
+    return f;
+}
 
 // ground := each known cell's level: each lattice corner's level carried to the cell along
 // its plane, blended bilinearly over the corners that have one; NaN elsewhere.
