@@ -80,6 +80,32 @@ for cfg in "$root"/etc/ugv/*.toml; do
   if out=$("$build/bin/$daemon" --config "$cfg" --print-config 2>&1 >/dev/null); then check ok "$daemon accepts /etc/ugv/$(basename "$cfg")"
   else check no "$daemon refuses /etc/ugv/$(basename "$cfg"): $out"; fi
 done
+# ... and says what the daemon's defaults say (its header promises so): a key the file holds
+# differs from `--print-config` only where it names this vehicle's hardware (device, sensor_id,
+# transport) or its real-time settings. A default changed in code and not here would make the
+# vehicle run other values than every test and the demo.
+for cfg in "$root"/etc/ugv/*.toml; do
+  name=$(basename "$cfg" .toml); daemon=ugv-${name%%-*}
+  if out=$(python3 - "$cfg" <("$build/bin/$daemon" --print-config) 2>&1 <<'PY'
+import sys, tomllib
+def flat(t, p=""):
+    r = {}
+    for k, v in t.items():
+        r.update(flat(v, p + k + ".")) if isinstance(v, dict) else r.__setitem__(p + k, v)
+    return r
+shipped = flat(tomllib.load(open(sys.argv[1], "rb")))
+defaults = flat(tomllib.load(open(sys.argv[2], "rb")))
+vehicle = {"device", "sensor_id", "transport"}
+def same(a, b):
+    return abs(a - b) <= 1e-9 * max(1.0, abs(b)) if isinstance(a, float) and isinstance(b, float) else a == b
+bad = [f"{k} = {v!r} (default {defaults.get(k)!r})" for k, v in shipped.items()
+       if k.rsplit(".", 1)[-1] not in vehicle and not k.startswith("realtime.") and not same(v, defaults.get(k))]
+print("; ".join(bad))
+sys.exit(1 if bad else 0)
+PY
+  ); then check ok "/etc/ugv/$(basename "$cfg"): $daemon's defaults but for the vehicle's keys"
+  else check no "/etc/ugv/$(basename "$cfg") differs from $daemon --print-config: $out"; fi
+done
 for u in "${units[@]}"; do
   cfg=$(sed -n 's/^ExecStart=.*--config \([^ ]*\).*/\1/p' "$units_dir/$u" | sed 's/%i/front/')
   [ -z "$cfg" ] && continue
