@@ -5,8 +5,9 @@
 
 int main(int argc, char** argv)
 {
-    // Not batched: the goal for the latency from LCM to a client's socket is 20 ms.
-    ugv::daemon::Daemon d({.name = "ugv-foxglove", .status_channel = "STATUS_FOXGLOVE", .bus_batch_ms = 0}, argc, argv);
+    // Batched by 5 ms: it bridges every channel, and a wake-up per datagram was a third of
+    // its CPU; 5 ms more is well within the 20 ms goal from LCM to a client's socket.
+    ugv::daemon::Daemon d({.name = "ugv-foxglove", .status_channel = "STATUS_FOXGLOVE", .bus_batch_ms = 5}, argc, argv);
     const ugv::foxglove_daemon::FoxgloveConfig config = ugv::foxglove_daemon::read_config(d.config());
     d.start();
     return ugv::foxglove_daemon::run(d, config);
