@@ -2,7 +2,7 @@
 
 #include "classifier_kernels.hpp"
 #include "local_ground.hpp"
-#include "vec4.hpp"
+#include "ugv/simd/float4.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -20,7 +20,10 @@ namespace ugv::traverse {
 
 namespace {
 
-using namespace vec4;
+using namespace simd;
+using F4 = Float4;
+using I4 = Int4;
+using D2 = Double2;
 using kernels::count_below;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();

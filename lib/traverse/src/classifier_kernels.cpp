@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "ugv/traverse/cell_classifier.hpp"
-#include "vec4.hpp"
+#include "ugv/simd/float4.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define UGV_TRAVERSE_AVX2 1
@@ -36,7 +36,10 @@ namespace kernels {
 
 namespace {
 
-using namespace vec4;
+using namespace simd;
+using F4 = Float4;
+using I4 = Int4;
+using D2 = Double2;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // The loops that the compiler vectorises by itself, written once: inlined into the baseline
