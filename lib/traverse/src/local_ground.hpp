@@ -15,10 +15,12 @@ namespace ugv::traverse {
 
 constexpr int kGroundStride = 3;  // a lattice point every third cell
 
-// A radius as the half-width of the square window of cells it covers (at least 1).
+// A radius as the half-width of the square window of cells it covers (at least 1). The
+// resolution comes from a float (0.2f is 0.2000000030): a radius of a whole number of cells
+// must still cover them all, so the tolerance is above float's rounding.
 inline int ground_half_width(double radius_m, double resolution_m)
 {
-    return std::max(1, static_cast<int>(std::floor(radius_m / resolution_m + 1e-9)));
+    return std::max(1, static_cast<int>(std::floor(radius_m / resolution_m + 1e-6)));
 }
 
 // The rank of the ground among n levelled heights: the 40th percentile.

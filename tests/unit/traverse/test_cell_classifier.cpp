@@ -82,6 +82,21 @@ TEST_CASE("a box is an obstacle and the ground around it is not")
     CHECK(count_class(l, CellClass::negative_obstacle) == 0);
 }
 
+TEST_CASE("a step radius of a whole number of cells covers them all at the map's float resolution")
+{
+    // The map message carries its resolution as a float: 0.2f is 0.2000000030 m, and 0.4 m
+    // of it is 1.99999997 cells.
+    TerrainGrid g = empty_grid(60, 60, static_cast<double>(0.2f));
+    fill(g, [](double x, double) { return kGround - (x >= 8.0 ? 0.5 : 0.0); });
+    const std::size_t two_cells_before = at(g, 7.7, 0.1);
+    ClassifierConfig two;
+    two.step_radius_m = 0.4;
+    CHECK(classify(g, Odometer{}, two).step_m[two_cells_before] > 0.45f);
+    ClassifierConfig one;
+    one.step_radius_m = 0.3;
+    CHECK(classify(g, Odometer{}, one).step_m[two_cells_before] < 0.1f);
+}
+
 TEST_CASE("a wall's cell with a low mean but a high, well supported max is an obstacle")
 {
     TerrainGrid g = empty_grid(60, 60);

@@ -48,7 +48,7 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
         for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); ++p)
             for (int q = std::max(0, j - h); q <= std::min(ny - 1, j + h); ++q) visit(at(p, q));
     };
-    const int hs = std::max(1, static_cast<int>(std::floor(c.step_radius_m / g.resolution_m + 1e-9)));
+    const int hs = std::max(1, static_cast<int>(std::floor(c.step_radius_m / g.resolution_m + 1e-6)));
     std::vector<uint8_t> known(n), high(n), low(n);
     for (std::size_t k = 0; k < n; ++k) known[k] = std::isnan(top[k]) ? 0 : 1;
     std::vector<float> ground;
@@ -99,7 +99,7 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
                 cls = CellClass::negative_obstacle;
             l.cell_class[k] = cls;
         }
-    const int hp = std::max(1, static_cast<int>(std::floor(c.slope_radius_m / g.resolution_m + 1e-9)));
+    const int hp = std::max(1, static_cast<int>(std::floor(c.slope_radius_m / g.resolution_m + 1e-6)));
     std::vector<uint8_t> counted(n);
     for (std::size_t k = 0; k < n; ++k) counted[k] = known[k] && l.cell_class[k] == CellClass::traversable;
     for (int i = 0; i < nx; ++i)
