@@ -161,7 +161,7 @@ struct CellTruth
     double ground_above = std::numeric_limits<double>::infinity();
 };
 
-CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i, int j)
+CellTruth cell_truth(const TruthTerrain& truth, const SeenGround& seen_ground, const PlacedClasses& map, int i, int j)
 {
     const double res = map.resolution();
     const simworld::HeightField& f = truth.field();
@@ -169,9 +169,6 @@ CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i,
     const int n = std::max(1, static_cast<int>(std::ceil(res / f.resolution_m - 1e-6)));
     const Eigen::Vector2d c = map.centre_world(i, j);
     CellTruth out;
-    const std::function<bool(int, int)> seen_column = [&](int a, int b) {
-        return map.known_at({f.cell_x(a), f.cell_y(b)});
-    };
     for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
             const Eigen::Vector2d p = c + map.axis_i() * (res * ((a + 0.5) / n - 0.5)) +
@@ -186,7 +183,7 @@ CellTruth cell_truth(const TruthTerrain& truth, const PlacedClasses& map, int i,
                     // Sampled only if it stands max_step above the ground the laser has seen
                     // around it: behind a ramp's high edge the lower ground lies in the
                     // edge's shadow, and the ramp's top is no step over what was seen.
-                    const double seen = truth.ground_height_seen(ci, cj, seen_column);
+                    const double seen = seen_ground.ground(ci, cj);
                     if (f.at(ci, cj) - seen >= r.max_step_m - kSampleTolerance) {
                         out.above = std::min(out.above, seen + r.max_step_m);
                         out.ground_below = std::max(out.ground_below, seen + 0.5 * r.max_step_m);
@@ -281,10 +278,12 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
     const int nx = map.nx(), ny = map.ny();
     std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
     std::vector<CellTruth> cells(t.size());
+    const simworld::HeightField& f = truth.field();
+    const SeenGround seen_ground(truth, [&](int a, int b) { return map.known_at({f.cell_x(a), f.cell_y(b)}); });
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i * ny + j);
-            cells[k] = cell_truth(truth, map, i, j);
+            cells[k] = cell_truth(truth, seen_ground, map, i, j);
             t[k] = cells[k].cls;
         }
     }
@@ -297,8 +296,8 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
     };
     auto map_obstacle = [&](int a, int b) { return is_obstacle(map.cls(a, b)); };
     const TruthRules& rules = truth.rules();
-    const int ground_cells = static_cast<int>(std::floor(rules.ground_radius_m / map.resolution() + 1e-9));
-    const int slope_cells = static_cast<int>(std::ceil(rules.slope_radius_m / map.resolution() - 1e-9));
+    const int ground_cells = static_cast<int>(std::floor(rules.ground_radius_m / map.resolution() + 1e-6));
+    const int slope_cells = static_cast<int>(std::ceil(rules.slope_radius_m / map.resolution() - 1e-6));
     const double slope_span_m = std::tan(rules.max_slope_deg * M_PI / 180.0) * rules.slope_radius_m;
     auto truth_obstacle = [&](int a, int b) { return is_obstacle(t[static_cast<std::size_t>(a * ny + b)]); };
     for (int i = 0; i < nx; ++i) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace ugv::eval {
 namespace {
@@ -93,14 +94,14 @@ double TruthTerrain::ground_height(int i, int j) const
     return ground_cache_[k] = ground_over(i, j, nullptr);
 }
 
-double TruthTerrain::ground_height_seen(int i, int j, const std::function<bool(int, int)>& seen) const
+double TruthTerrain::ground_height_over(int i, int j, const std::function<bool(int, int)>& include) const
 {
     const simworld::HeightField& f = *field_;
     if (i < 0 || i >= f.nx || j < 0 || j >= f.ny) return std::numeric_limits<double>::quiet_NaN();
-    return ground_over(i, j, &seen);
+    return ground_over(i, j, &include);
 }
 
-double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int)>* seen) const
+double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int)>* include) const
 {
     const simworld::HeightField& f = *field_;
     const double z = f.at(i, j);
@@ -108,9 +109,15 @@ double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int
     // The columns within ground_radius (every third), the plane through them by least
     // squares, its slope taken out, and the median of what is left (a box or ditch narrower
     // than the radius is the minority; a slope is its own ground).
-    // Buffers of its own for the seen ground: step_class below computes other columns' grounds.
-    std::vector<float>& around = seen != nullptr ? around_seen_ : around_;
-    std::vector<std::pair<int, int>>& offsets = seen != nullptr ? offsets_seen_ : offsets_;
+    if (scratch_.size() <= depth_) scratch_.resize(depth_ + 1);
+    std::vector<float>& around = scratch_[depth_].around;
+    std::vector<std::pair<int, int>>& offsets = scratch_[depth_].offsets;
+    struct Depth
+    {
+        std::size_t& d;
+        explicit Depth(std::size_t& depth) : d(++depth) {}
+        ~Depth() { --d; }
+    } depth(depth_);
     around.clear();
     offsets.clear();
     double s0 = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, sz = 0, saz = 0, sbz = 0;
@@ -119,9 +126,7 @@ double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int
         if (a < 0 || a >= f.nx || b < 0 || b >= f.ny) continue;
         const double h = f.at(a, b);
         if (!std::isfinite(h)) continue;
-        // The seen ground: of the columns the laser has seen, those that are not obstacles
-        // themselves (a wall seen from one side would tilt the plane of the ground before it).
-        if (seen != nullptr && !((*seen)(a, b) && step_class(a, b) == TruthClass::traversable)) continue;
+        if (include != nullptr && !(*include)(a, b)) continue;
         const double dz = h - z;
         around.push_back(static_cast<float>(dz));
         offsets.emplace_back(di, dj);
@@ -144,7 +149,7 @@ double TruthTerrain::ground_over(int i, int j, const std::function<bool(int, int
     }
     for (std::size_t u = 0; u < around.size(); ++u)
         around[u] -= static_cast<float>(ga * offsets[u].first + gb * offsets[u].second);
-    if (around.empty()) return seen != nullptr ? std::numeric_limits<double>::quiet_NaN() : z;
+    if (around.empty()) return include != nullptr ? std::numeric_limits<double>::quiet_NaN() : z;
     double ground = z;
     {
         const auto mid = around.begin() + static_cast<std::ptrdiff_t>(around.size() / 2);
@@ -214,6 +219,27 @@ TruthClass TruthTerrain::compute(int i, int j) const
         if (std::isfinite(c[1]) && std::isfinite(c[2])) gradient = std::hypot(c[1], c[2]);
     }
     return gradient > max_slope_tan_ ? TruthClass::obstacle : TruthClass::traversable;
+}
+
+SeenGround::SeenGround(const TruthTerrain& truth, std::function<bool(int, int)> seen)
+    : truth_(truth), seen_(std::move(seen))
+{
+}
+
+double SeenGround::ground(int i, int j) const
+{
+    return truth_.ground_height_over(i, j, [this](int a, int b) { return seen_(a, b) && !step_over_seen(a, b); });
+}
+
+bool SeenGround::step_over_seen(int a, int b) const
+{
+    const std::int64_t key = static_cast<std::int64_t>(a) * truth_.field().ny + b;
+    const auto found = step_.find(key);
+    if (found != step_.end()) return found->second;
+    const double ground = truth_.ground_height_over(a, b, seen_);
+    const bool step = std::isfinite(ground) && truth_.field().at(a, b) - ground >= truth_.rules().max_step_m - kHeightTolerance;
+    step_.emplace(key, step);
+    return step;
 }
 
 }  // namespace ugv::eval

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -45,9 +47,8 @@ public:
     // The local ground column (i, j) is judged against (the detrended median within
     // ground_radius_m); NaN outside the field or where its height is not finite.
     double ground_height(int i, int j) const;
-    // The same over the columns (a, b) for which seen(a, b) is true and which are no step
-    // obstacles themselves (NaN if there are none): the ground as far as the laser has seen it.
-    double ground_height_seen(int i, int j, const std::function<bool(int, int)>& seen) const;
+    // The same over only the columns (a, b) for which include(a, b) is true (NaN if none is).
+    double ground_height_over(int i, int j, const std::function<bool(int, int)>& include) const;
     // Column indices of world point (x, y); false outside the field.
     bool column_of(double x_m, double y_m, int& i, int& j) const;
 
@@ -57,7 +58,7 @@ public:
 private:
     TruthClass step_class(int i, int j) const;  // by the height over the local ground alone
     TruthClass compute(int i, int j) const;
-    double ground_over(int i, int j, const std::function<bool(int, int)>* seen) const;
+    double ground_over(int i, int j, const std::function<bool(int, int)>* include) const;
 
     std::shared_ptr<const simworld::HeightField> field_;
     TruthRules rules_;
@@ -70,10 +71,33 @@ private:
     mutable std::vector<uint8_t> step_cache_;      // the same for step_class
     mutable std::vector<double> ground_cache_;     // ground_height, NaN = not computed (or none)
     mutable std::vector<uint8_t> ground_done_;
-    mutable std::vector<float> around_;
-    mutable std::vector<std::pair<int, int>> offsets_;
-    mutable std::vector<float> around_seen_;                  // the same for ground_height_seen
-    mutable std::vector<std::pair<int, int>> offsets_seen_;
+    // ground_over's buffers, one pair per depth: a column filter may ask for other grounds.
+    struct Scratch
+    {
+        std::vector<float> around;
+        std::vector<std::pair<int, int>> offsets;
+    };
+    mutable std::deque<Scratch> scratch_;  // growing keeps the outer calls' references valid
+    mutable std::size_t depth_ = 0;
+};
+
+// The ground as far as the laser has seen it around a column: ground_height over the seen
+// columns that are no step obstacles over the ground seen around them (a wall seen from one
+// side would tilt the plane of the ground before it). Whether a column is such an obstacle
+// is judged on what was seen only: a ramp's top is no step over a drop in its shadow. One per
+// map (what is seen differs); it keeps the columns it has judged.
+class SeenGround
+{
+public:
+    SeenGround(const TruthTerrain& truth, std::function<bool(int, int)> seen);
+    double ground(int i, int j) const;  // NaN outside the field or where no column was seen
+
+private:
+    bool step_over_seen(int a, int b) const;
+
+    const TruthTerrain& truth_;
+    std::function<bool(int, int)> seen_;
+    mutable std::unordered_map<std::int64_t, bool> step_;
 };
 
 }  // namespace ugv::eval

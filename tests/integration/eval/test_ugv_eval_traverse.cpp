@@ -350,18 +350,26 @@ TEST_CASE("ugv-eval traverse: the sampled recall counts only obstacles whose hei
     CHECK(std::isnan(r.get("sampled_recall")));
 }
 
-TEST_CASE("ugv-eval traverse: a ramp's top is sampled only when the ground behind its high edge was seen")
+// A 0.4 m ramp rising over x 4 .. 8 m for |y| < half_width_m, then a drop to the ground at 1.5 m
+// (also at its sides), scored as a map that knows every cell, sampled at its columns' extremes,
+// and calls all traversable, but the cells at x 8 .. 10 m behind the high edge (unknown when
+// `shadowed`). The truth's local ground of the top's last half metre takes in the ground behind
+// the edge. Returns the run and the sampled misses within 0.5 m of the ramp's centre line.
+struct RampScore
 {
-    // A 0.4 m ramp rising over x 4 .. 8 m (across the whole field), then a drop to the ground: the truth's
-    // local ground of the top's last half metre takes in the lower ground behind the edge.
+    Run run;
+    int sampled_middle = 0;
+};
+
+RampScore score_ramp(double half_width_m, bool shadowed)
+{
     test::TempDir dir;
     simworld::HeightField f(-6.0, -11.0, kRes, 440, 440, 1.5f);
     for (int i = 0; i < f.nx; ++i)
         for (int j = 0; j < f.ny; ++j)
-            if (f.cell_x(i) > 4.0 && f.cell_x(i) < 8.0)
+            if (f.cell_x(i) > 4.0 && f.cell_x(i) < 8.0 && std::abs(f.cell_y(j)) < half_width_m)
                 f.at(i, j) = static_cast<float>(1.5 + 0.1 * (f.cell_x(i) - 4.0));
     test::write_file(dir / "truth.hf", simworld::encode_height_field(f));
-    // Every cell known and sampled at its columns' extremes; the map says traversable everywhere.
     terrain_map_t t = source_map(1.5, {});
     for (int i = 0; i < kN; ++i)
         for (int j = 0; j < kN; ++j) {
@@ -375,27 +383,56 @@ TEST_CASE("ugv-eval traverse: a ramp's top is sampled only when the ground behin
                 }
         }
     std::vector<int8_t> cls(kN * kN, traversability_map_t::CLASS_TRAVERSABLE);
-    auto score = [&](const std::vector<int8_t>& c) {
-        const std::string log = dir / "t.lcm";
-        {
-            lcm::LogFile out(log, "w");
-            test::write_event(out, kUtime, "TERRAIN_MAP", t);
-            test::write_event(out, kUtime, "TRAVERSABILITY_MAP", trav_map(1.5, c));
-        }
-        return eval(dir, {"traverse", log, "--truth", dir / "truth.hf"});
-    };
-    Run seen = score(cls);
-    INFO(seen.out);
-    REQUIRE(seen.rc == 0);
-    CHECK(seen.get("obstacle_seen") > 0);  // the top's last cells, by the truth's ground
-    CHECK(seen.get("sampled") > 0);        // the ground behind the edge seen: a step over it
-    CHECK(seen.get("sampled_recall") == 0.0);
+    if (shadowed)
+        area(cls, 8.0, kOriginY, 10.0, kOriginY + kN * double(kCell), traversability_map_t::CLASS_UNKNOWN);
+    const std::string log = dir / "t.lcm";
+    {
+        lcm::LogFile out(log, "w");
+        test::write_event(out, kUtime, "TERRAIN_MAP", t);
+        test::write_event(out, kUtime, "TRAVERSABILITY_MAP", trav_map(1.5, cls));
+    }
+    RampScore r{eval(dir, {"traverse", log, "--truth", dir / "truth.hf", "--misses", dir / "misses.jsonl"}), 0};
+    const std::string misses = test::read_file(dir / "misses.jsonl");
+    for (std::size_t at = misses.find("\"body_y\": "); at != std::string::npos; at = misses.find("\"body_y\": ", at + 1)) {
+        const std::size_t line_end = misses.find('\n', at);
+        if (std::abs(std::stod(misses.substr(at + 10))) < 0.5 &&
+            misses.substr(at, line_end - at).find("\"sampled\": true") != std::string::npos)
+            ++r.sampled_middle;
+    }
+    return r;
+}
+
+TEST_CASE("ugv-eval traverse: a ramp's top is sampled only when the ground behind its high edge was seen")
+{
+    // Across the whole field.
+    const RampScore seen = score_ramp(100.0, false);
+    INFO(seen.run.out);
+    REQUIRE(seen.run.rc == 0);
+    CHECK(seen.run.get("obstacle_seen") > 0);  // the top's last cells, by the truth's ground
+    CHECK(seen.run.get("sampled") > 0);        // the ground behind the edge seen: a step over it
+    CHECK(seen.sampled_middle > 0);
+    CHECK(seen.run.get("sampled_recall") == 0.0);
     // The ground behind the edge in its shadow (unknown): the top is no step over what was seen.
-    area(cls, 8.0, kOriginY, 10.0, kOriginY + kN * double(kCell), traversability_map_t::CLASS_UNKNOWN);
-    Run shadowed = score(cls);
-    INFO(shadowed.out);
-    CHECK(shadowed.get("obstacle_seen") == seen.get("obstacle_seen"));
-    CHECK(shadowed.get("sampled") == 0);
+    const RampScore shadowed = score_ramp(100.0, true);
+    INFO(shadowed.run.out);
+    CHECK(shadowed.run.get("obstacle_seen") == seen.run.get("obstacle_seen"));
+    CHECK(shadowed.run.get("sampled") == 0);
+}
+
+TEST_CASE("ugv-eval traverse: whether a seen column is ground is judged on what was seen")
+{
+    // A 2.4 m wide ramp, the ground at its sides seen, the ground behind its high edge not: by the
+    // whole truth the top's last half metre stands over the ground behind the edge, but over
+    // what was seen the middle of the top is the ramp's own ground, and no step.
+    const RampScore shadowed = score_ramp(1.2, true);
+    INFO(shadowed.run.out);
+    REQUIRE(shadowed.run.rc == 0);
+    CHECK(shadowed.run.get("obstacle_seen") > 0);
+    CHECK(shadowed.sampled_middle == 0);
+    // The ground behind the edge seen: the middle of the top is a step over it again.
+    const RampScore seen = score_ramp(1.2, false);
+    INFO(seen.run.out);
+    CHECK(seen.sampled_middle > 0);
 }
 
 TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unrestricted")
