@@ -1,6 +1,5 @@
 #include "foxglove_node.hpp"
 
-#include <malloc.h>
 
 #include <exception>
 
@@ -90,10 +89,6 @@ void FoxgloveNode::on_message(const std::string& name, const uint8_t* data, std:
 
 int run(daemon::Daemon& d, const FoxgloveConfig& config)
 {
-    // The maps' JSON and frames (~1 MB each, several copies per message) from the heap, not
-    // from a fresh mmap each time: its page faults were a sixth of the daemon's CPU (perf).
-    mallopt(M_MMAP_THRESHOLD, 16 << 20);
-    mallopt(M_TRIM_THRESHOLD, 32 << 20);
     WsServer server({.name = d.name(),
                      .address = config.address,
                      .port = config.port,
