@@ -130,11 +130,12 @@ int main(int argc, char** argv)
                          latency_from.c_str());
             return 1;
         }
-        std::printf("%s -> %s added latency over %zu messages: p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu inputs unanswered)\n",
+        std::printf("%s -> %s added latency over %zu messages: p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu inputs "
+                    "unanswered, %zu answers received before their input, timed as 0)\n",
                     latency_from.c_str(), latency_to.c_str(), v.size(),
                     static_cast<double>(ugv::logstat::percentile(v, 50)) / 1e3,
                     static_cast<double>(ugv::logstat::percentile(v, 99)) / 1e3,
-                    static_cast<double>(ugv::logstat::percentile(v, 100)) / 1e3, latency.unanswered());
+                    static_cast<double>(ugv::logstat::percentile(v, 100)) / 1e3, latency.unanswered(), latency.early());
         return 0;
     }
     ugv::logstat::StreamStats stats;
