@@ -98,6 +98,7 @@ void LcmReassembler::release(InProgress& s, uint64_t* counter)
     if (counter) ++*counter;
     bytes_held_ -= s.charged;
     s.active = false;
+    s.unwanted = false;
     s.charged = 0;
     s.payload_bytes = 0;
     // Small buffers are kept for the sender's next message: garbage that begins a message per
@@ -136,7 +137,8 @@ void LcmReassembler::expire(int64_t now_utime)
     }
 }
 
-bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t now_utime, Message& done)
+bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t now_utime, Message& done,
+                                  const Wants* wants)
 {
     bytes_received_ += f.size;
     expire(now_utime);
@@ -168,6 +170,23 @@ bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t
     if (s.have[f.fragment_no]) return false;  // a duplicate
     if (s.payload_bytes + f.payload_size > s.message_size) {
         ++counters_.invalid_datagrams;  // more bytes than the message has
+        return false;
+    }
+    // Every daemon on the group receives every map (its own looped back too): one nobody
+    // here wants is followed to its end, its bytes neither kept nor copied.
+    if (f.fragment_no == 0 && wants != nullptr && !(*wants)(f.channel)) {
+        bytes_held_ -= s.charged;
+        s.charged = 0;
+        s.pieces.clear();
+        s.bytes.clear();
+        s.unwanted = true;
+    }
+    if (s.unwanted) {
+        s.have[f.fragment_no] = true;
+        ++s.received;
+        s.payload_bytes += f.payload_size;
+        if (s.received < s.fragment_count) return false;
+        release(s, s.payload_bytes == s.message_size ? &counters_.unwanted_messages : &counters_.invalid_datagrams);
         return false;
     }
     const std::size_t cost = f.payload_size + kLcmFragmentHeaderBytes;

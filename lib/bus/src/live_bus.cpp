@@ -95,7 +95,8 @@ public:
             const detail::DrainResult r = receiver_->drain(
                 [this](std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime) {
                     return dispatch(channel, data, size, recv_utime);
-                });
+                },
+                {}, &wants_);
             const detail::ReassemblyCounters& c = receiver_->reassembly();
             counters_.incomplete_messages = c.incomplete_messages;
             counters_.invalid_datagrams = c.invalid_datagrams;
@@ -174,6 +175,7 @@ private:
     lcm_t* lcm_ = nullptr;
     detail::ReassemblyLimits limits_;
     std::unique_ptr<detail::UdpmReceiver> receiver_;
+    const detail::LcmReassembler::Wants wants_ = [this](std::string_view channel) { return !route(channel).empty(); };
     std::list<Sub> subs_;  // stable addresses: liblcm and routes_ hold pointers to them
     std::unordered_map<std::string, std::vector<Sub*>> routes_;
     std::string channel_;  // scratch for lookups

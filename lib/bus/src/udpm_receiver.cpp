@@ -84,7 +84,7 @@ UdpmReceiver::~UdpmReceiver()
     if (fd_ >= 0) ::close(fd_);
 }
 
-DrainResult UdpmReceiver::drain(const Sink& sink, DrainBudget budget)
+DrainResult UdpmReceiver::drain(const Sink& sink, DrainBudget budget, const LcmReassembler::Wants* wants)
 {
     DrainResult result;
     mmsghdr msgs[kBatch];
@@ -126,7 +126,7 @@ DrainResult UdpmReceiver::drain(const Sink& sink, DrainBudget budget)
                 continue;
             }
             const uint64_t sender = (uint64_t{from[k].sin_addr.s_addr} << 16) | from[k].sin_port;
-            if (!reassembler_.add_fragment(sender, d, recv_utime, whole)) continue;
+            if (!reassembler_.add_fragment(sender, d, recv_utime, whole, wants)) continue;
             ++counters_.messages;
             result.handed += sink(whole.channel, whole.payload.data(), whole.payload.size(), recv_utime) ? 1 : 0;
         }

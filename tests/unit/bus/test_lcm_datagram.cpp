@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ugv/bus/lcm_datagram.hpp"
@@ -136,6 +137,33 @@ TEST_CASE("lcm reassembly: fragments in any order make the message once; duplica
     CHECK(r.counters().invalid_datagrams == 0);
     // A late duplicate of a finished message starts a new one, which never completes.
     CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), kNow, m));
+}
+
+TEST_CASE("lcm reassembly: a message on a channel nobody wants is followed to its end, not kept")
+{
+    LcmReassembler r;
+    LcmReassembler::Message m;
+    const LcmReassembler::Wants wants = [](std::string_view channel) { return channel == "MAP"; };
+    // Fragment 2 comes first and is held until fragment 0 names the channel.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 6, 2, 3, "", "ghi")), kNow, m, &wants));
+    CHECK(r.bytes_held() > 0);
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 0, 0, 3, "OTHER", "abc")), kNow, m, &wants));
+    CHECK(r.bytes_held() == 0);
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(4, 9, 3, 1, 3, "", "def")), kNow, m, &wants));
+    CHECK(r.counters().unwanted_messages == 1);
+    CHECK(r.counters().incomplete_messages == 0);
+    CHECK(r.counters().invalid_datagrams == 0);
+    // The sender's next message, wanted, is made as before.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(5, 6, 0, 0, 2, "MAP", "ABC")), kNow, m, &wants));
+    REQUIRE(r.add_fragment(1, parse(fragment(5, 6, 3, 1, 2, "", "DEF")), kNow, m, &wants));
+    CHECK(m.channel == "MAP");
+    CHECK(text(m) == "ABCDEF");
+    // An unwanted message's fragments that do not tile it are invalid, as a kept one's.
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(6, 9, 0, 0, 2, "OTHER", "abc")), kNow, m, &wants));
+    CHECK_FALSE(r.add_fragment(1, parse(fragment(6, 9, 3, 1, 2, "", "def")), kNow, m, &wants));
+    CHECK(r.counters().invalid_datagrams == 1);
+    CHECK(r.counters().unwanted_messages == 1);
+    CHECK(r.bytes_held() == 0);
 }
 
 TEST_CASE("lcm reassembly: a new message from a sender abandons its unfinished one, and it is counted")

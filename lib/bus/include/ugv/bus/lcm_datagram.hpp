@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,6 +61,7 @@ struct ReassemblyCounters
     uint64_t oversized_messages = 0;    // claimed more than max_message_bytes, or outgrew a sender's share
     uint64_t expired_messages = 0;      // unfinished after max_age_us
     uint64_t evicted_messages = 0;      // the least recently used, dropped to stay within the bounds
+    uint64_t unwanted_messages = 0;     // complete, on a channel nobody here subscribed to: not kept
 };
 
 // The bounds of reassembly. Memory is charged as it arrives: each fragment held costs its
@@ -98,10 +100,15 @@ public:
 
     explicit LcmReassembler(ReassemblyLimits limits = {});
 
+    // Whether a channel is subscribed to here.
+    using Wants = std::function<bool(std::string_view channel)>;
+
     // sender: any key unique per sending socket (address and port); now_utime: when the
     // datagram arrived (us, any clock that the caller keeps using). Returns true and fills
-    // `done` when this fragment completes its message.
-    bool add_fragment(uint64_t sender, const LcmDatagram& fragment, int64_t now_utime, Message& done);
+    // `done` when this fragment completes its message. With `wants`, a message whose channel
+    // (in its fragment 0) is not wanted is followed to its end without keeping its bytes.
+    bool add_fragment(uint64_t sender, const LcmDatagram& fragment, int64_t now_utime, Message& done,
+                      const Wants* wants = nullptr);
     // Drops unfinished messages older than max_age_us (add_fragment does it too).
     void expire(int64_t now_utime);
 
@@ -129,6 +136,7 @@ private:
         uint16_t received = 0;
         std::size_t payload_bytes = 0;
         std::size_t charged = 0;  // payload_bytes + kLcmFragmentHeaderBytes per piece
+        bool unwanted = false;    // its channel is nobody's here: its bytes are not kept
         int64_t started_utime = 0;
         uint64_t last_use = 0;
         std::vector<bool> have;       // by fragment number

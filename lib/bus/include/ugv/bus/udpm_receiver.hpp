@@ -57,8 +57,9 @@ public:
     // epoch; returns whether the message was wanted (someone subscribed to its channel).
     using Sink = std::function<bool(std::string_view channel, const uint8_t* data, std::size_t size, int64_t recv_utime)>;
     // Reads the datagrams already waiting, without blocking, up to the budget, and hands each
-    // complete message to `sink`, in arrival order.
-    DrainResult drain(const Sink& sink, DrainBudget budget = {});
+    // complete message to `sink`, in arrival order. With `wants`, fragmented messages on
+    // channels it does not want are not reassembled (counted in reassembly().unwanted_messages).
+    DrainResult drain(const Sink& sink, DrainBudget budget = {}, const LcmReassembler::Wants* wants = nullptr);
 
     const UdpmReceiverCounters& counters() const { return counters_; }
     const ReassemblyCounters& reassembly() const { return reassembler_.counters(); }
