@@ -756,20 +756,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
 
     // 5. Too steep is an obstacle (where no step obstacle spoils the plane); the rest costs
     // the largest of its step, drop, roughness and slope against their limits.
-    for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k])) continue;
-        CellClass& cls = out.cell_class[k];
-        if (cls == CellClass::traversable && !(edge_[k] & kObstacleNear) && out.slope_deg[k] > c.max_slope_deg)
-            cls = CellClass::obstacle;
-        if (cls != CellClass::traversable) {
-            out.cost[k] = 1.0f;
-            continue;
-        }
-        double cost = std::max(out.step_m[k] / c.max_step_m, out.drop_m[k] / c.max_drop_m);
-        cost = std::max(cost, out.roughness_m[k] / c.max_roughness_m);
-        if (std::isfinite(out.slope_deg[k])) cost = std::max(cost, out.slope_deg[k] / c.max_slope_deg);
-        out.cost[k] = static_cast<float>(std::min(1.0, cost));
-    }
+    kernels::slope_class_and_cost(n, out.step_m.data(), out.drop_m.data(), out.roughness_m.data(), out.slope_deg.data(),
+                                  edge_.data(), kObstacleNear,
+                                  {c.max_step_m, c.max_drop_m, c.max_roughness_m, c.max_slope_deg},
+                                  out.cell_class.data(), out.cost.data());
 }
 
 }  // namespace ugv::traverse

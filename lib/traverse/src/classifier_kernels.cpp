@@ -1,5 +1,6 @@
 #include "classifier_kernels.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -102,6 +103,32 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     }
 }
 
+// Without a branch, so that it vectorises: every quotient is computed and the verdicts
+// selected. std::max (a < b ? b : a) leaves a NaN slope out as the plain loop's test did.
+[[gnu::always_inline]] inline void slope_class_and_cost_body(std::size_t n, const float* __restrict step,
+                                                             const float* __restrict drop,
+                                                             const float* __restrict roughness,
+                                                             const float* __restrict slope_deg,
+                                                             const uint8_t* __restrict flags, uint8_t near_bit,
+                                                             const CostLimits& limits, CellClass* __restrict cell_class,
+                                                             float* __restrict cost)
+{
+    const double max_step = limits.max_step_m, max_drop = limits.max_drop_m;
+    const double max_rough = limits.max_roughness_m, max_slope = limits.max_slope_deg;
+    for (std::size_t k = 0; k < n; ++k) {
+        const CellClass cls = cell_class[k];
+        const double slope = slope_deg[k];
+        const bool steep = (cls == CellClass::traversable) & ((flags[k] & near_bit) == 0) & (slope > max_slope);
+        const CellClass now = steep ? CellClass::obstacle : cls;
+        double q = std::max(step[k] / max_step, drop[k] / max_drop);
+        q = std::max(q, roughness[k] / max_rough);
+        q = std::max(q, slope / max_slope);
+        const float c = static_cast<float>(std::min(1.0, q));
+        cell_class[k] = now;
+        cost[k] = cls == CellClass::unknown ? kNaN : (now == CellClass::traversable ? c : 1.0f);
+    }
+}
+
 std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, float* __restrict buf)
 {
     // Four at a time tested, and the lanes that hold one gathered.
@@ -137,6 +164,14 @@ std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, flo
 {
     supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
                             span);
+}
+
+[[gnu::target("avx2,popcnt")]] void slope_class_and_cost_avx2(std::size_t n, const float* step, const float* drop,
+                                                              const float* roughness, const float* slope_deg,
+                                                              const uint8_t* flags, uint8_t near_bit, const CostLimits& limits,
+                                                              CellClass* cell_class, float* cost)
+{
+    slope_class_and_cost_body(n, step, drop, roughness, slope_deg, flags, near_bit, limits, cell_class, cost);
 }
 
 // Per mask of 8 lanes, the lanes set, first to last (then 0): a permutation that packs them.
@@ -217,6 +252,17 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
 #endif
     supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
                             span);
+}
+
+void slope_class_and_cost(std::size_t n, const float* step, const float* drop, const float* roughness,
+                          const float* slope_deg, const uint8_t* flags, uint8_t near_bit, const CostLimits& limits,
+                          CellClass* cell_class, float* cost)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2())
+        return slope_class_and_cost_avx2(n, step, drop, roughness, slope_deg, flags, near_bit, limits, cell_class, cost);
+#endif
+    slope_class_and_cost_body(n, step, drop, roughness, slope_deg, flags, near_bit, limits, cell_class, cost);
 }
 
 }  // namespace kernels

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "ugv/traverse/cell_classifier.hpp"
+
 namespace ugv::traverse::kernels {
 
 // Whether the AVX2 versions run (the CPU has AVX2 and POPCNT, and allow_avx2 allows them).
@@ -34,5 +36,17 @@ void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min
 void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
                         const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
                         float* top, float* bottom, float* roughness, float* span);
+
+// Step 5 for the cells [0, n): a traversable cell without near_bit in flags[k] whose slope is
+// above max_slope_deg becomes an obstacle; a known cell's cost is 1 unless traversable,
+// else min(1, the largest of step/max_step, drop/max_drop, roughness/max_roughness and
+// slope/max_slope) in double (a NaN slope left out); NaN where unknown.
+struct CostLimits
+{
+    double max_step_m, max_drop_m, max_roughness_m, max_slope_deg;
+};
+void slope_class_and_cost(std::size_t n, const float* step, const float* drop, const float* roughness,
+                          const float* slope_deg, const uint8_t* flags, uint8_t near_bit, const CostLimits& limits,
+                          CellClass* cell_class, float* cost);
 
 }  // namespace ugv::traverse::kernels
