@@ -190,65 +190,6 @@ void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, st
     }
 }
 
-// The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
-// of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, four cells
-// at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and to
-// whole vectors. Each sum starts at +0 and adds the taps in the order of d, as a plain loop
-// would (a padded tap adds +-0, which changes no sum: none is ever -0).
-void slope_row_sums(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo, int hp,
-                    std::size_t w4, float* __restrict rw, float* __restrict rwq, float* __restrict rwqq,
-                    float* __restrict rwz, float* __restrict rwzq, float* __restrict ro)
-{
-    for (std::size_t j = 0; j < w4; j += 4) {
-        F4 sw{}, swq{}, swqq{}, swz{}, swzq{}, so{};
-        for (int t = 0; t <= 2 * hp; ++t) {
-            const float fd = static_cast<float>(t - hp);
-            const F4 wv = load4(lw + j + t), zv = load4(lz + j + t) * wv;
-            sw += wv;
-            swq += fd * wv;
-            swqq += fd * fd * wv;
-            swz += zv;
-            swzq += fd * zv;
-            so += load4(lo + j + t);
-        }
-        store4(rw + j, sw);
-        store4(rwq + j, swq);
-        store4(rwqq + j, swqq);
-        store4(rwz + j, swz);
-        store4(rwzq + j, swzq);
-        store4(ro + j, so);
-    }
-}
-
-// The slope's column pass for one row of windows (the cells [j_from, j_to), whole vectors):
-// the row sums of the window's rows (rows[r]
-// points at row r's six sums, kRowSums apart by w4; fd[r] its offset), added in order of the
-// rows into the plane's ten moments, four cells at a time in registers.
-void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t w4, std::size_t j_from,
-                       std::size_t j_to, float* __restrict m)
-{
-    for (std::size_t j = j_from; j < j_to; j += 4) {
-        F4 s0{}, sp{}, spp{}, sq{}, sqq{}, spq{}, sz{}, szp{}, szq{}, so{};
-        for (int r = 0; r < nrows; ++r) {
-            const float* row = rows[r];
-            const float fd = fds[r];
-            const F4 rw = load4(row + j), rwq = load4(row + w4 + j), rwz = load4(row + 3 * w4 + j);
-            s0 += rw;
-            sp += fd * rw;
-            spp += fd * fd * rw;
-            sq += rwq;
-            sqq += load4(row + 2 * w4 + j);
-            spq += fd * rwq;
-            sz += rwz;
-            szp += fd * rwz;
-            szq += load4(row + 4 * w4 + j);
-            so += load4(row + 5 * w4 + j);
-        }
-        const F4 all[10] = {s0, sp, spp, sq, sqq, spq, sz, szp, szq, so};
-        for (int e = 0; e < 10; ++e) store4(m + static_cast<std::size_t>(e) * w4 + j, all[e]);
-    }
-}
-
 }  // namespace
 
 void TraversabilityLayers::reset(int nx_, int ny_)
@@ -686,17 +627,18 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // slope_reference() is the same fit written window by window.
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
-    const std::size_t w = static_cast<std::size_t>(ny), w4 = (w + 3) / 4 * 4, hw = static_cast<std::size_t>(hp);
+    constexpr std::size_t kL = kernels::kSlopeLanes;
+    const std::size_t w = static_cast<std::size_t>(ny), wv = (w + kL - 1) / kL * kL, hw = static_cast<std::size_t>(hp);
     // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
     // each computed as the column pass first needs it; rows at a stride of whole vectors.
     const int span = 2 * hp + 1;
-    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w4);
-    auto rows = [&](int p) { return &row_sums_[static_cast<std::size_t>(p % span) * kRowSums * w4]; };
+    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * wv);
+    auto rows = [&](int p) { return &row_sums_[static_cast<std::size_t>(p % span) * kRowSums * wv]; };
     const float z0 = static_cast<float>(g.position_m.z());
     // A row's weights, heights and obstacle flags, padded with hp zeros on each side.
-    line_w_.assign(w4 + 2 * hw, 0.0f);
-    line_z_.assign(w4 + 2 * hw, 0.0f);
-    line_o_.assign(w4 + 2 * hw, 0.0f);
+    line_w_.assign(wv + 2 * hw, 0.0f);
+    line_z_.assign(wv + 2 * hw, 0.0f);
+    line_o_.assign(wv + 2 * hw, 0.0f);
     // Rows without a known cell have row sums of +0, which add nothing: they are skipped.
     row_known_.resize(static_cast<std::size_t>(nx));
     for (int i = 0; i < nx; ++i) {
@@ -714,14 +656,14 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             lo[j] = known && !counts ? 1.0f : 0.0f;
         }
         float* r = rows(i);
-        slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, w4, r + W * w4, r + WQ * w4, r + WQQ * w4,
-                       r + WZ * w4, r + WZQ * w4, r + OBST * w4);
+        kernels::slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, wv, r + W * wv, r + WQ * wv,
+                                r + WQQ * wv, r + WZ * wv, r + WZQ * wv, r + OBST * wv);
     };
     int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
     slope_rows_.resize(static_cast<std::size_t>(span));
     slope_fd_.resize(static_cast<std::size_t>(span));
-    moments_.resize(w4 * 10);
+    moments_.resize(wv * 10);
     for (int i = 0; i < nx; ++i) {
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
@@ -738,14 +680,15 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         if (jlo == ny) continue;
         int jhi = ny;
         while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
-        slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
-                          (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
-        const float* so = &moments_[9 * w4];
+        kernels::slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, wv,
+                                   static_cast<std::size_t>(jlo) / kL * kL,
+                                   (static_cast<std::size_t>(jhi) + kL - 1) / kL * kL, moments_.data());
+        const float* so = &moments_[9 * wv];
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle (classifier_kernels); the arc tangent follows.
         tangent_.resize(w);
         const float* tangent = tangent_.data();
-        kernels::slope_tangents(moments_.data(), w4, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
+        kernels::slope_tangents(moments_.data(), wv, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
         for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "ugv/traverse/cell_classifier.hpp"
@@ -68,6 +69,76 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
         const double gi = (cjj * ciz - cij * cjz) / det, gj = (cii * cjz - cij * ciz) / det;
         const float t = static_cast<float>(std::sqrt(gi * gi + gj * gj) / resolution_m);
         tangent[j] = (c0 >= min_cells) & !(det < 1e-6 * c0 * c0) ? t : kNaN;
+    }
+}
+
+// The slope's sums, V a vector of 4 or 8 floats (GCC/Clang vector extensions; each lane the
+// scalar expression's IEEE result, so both widths give the same sums). memcpy for the
+// unaligned loads and stores, so that no function passes a V by value.
+template <class V>
+[[gnu::always_inline]] inline void slope_row_sums_body(const float* __restrict lw, const float* __restrict lz,
+                                                       const float* __restrict lo, int hp, std::size_t wv,
+                                                       float* __restrict rw, float* __restrict rwq,
+                                                       float* __restrict rwqq, float* __restrict rwz,
+                                                       float* __restrict rwzq, float* __restrict ro)
+{
+    constexpr std::size_t kN = sizeof(V) / sizeof(float);
+    for (std::size_t j = 0; j < wv; j += kN) {
+        V sw{}, swq{}, swqq{}, swz{}, swzq{}, so{};
+        for (int t = 0; t <= 2 * hp; ++t) {
+            const float fd = static_cast<float>(t - hp);
+            V wt, zt, ot;
+            std::memcpy(&wt, lw + j + t, sizeof wt);
+            std::memcpy(&zt, lz + j + t, sizeof zt);
+            std::memcpy(&ot, lo + j + t, sizeof ot);
+            const V zv = zt * wt;
+            sw += wt;
+            swq += fd * wt;
+            swqq += fd * fd * wt;
+            swz += zv;
+            swzq += fd * zv;
+            so += ot;
+        }
+        std::memcpy(rw + j, &sw, sizeof sw);
+        std::memcpy(rwq + j, &swq, sizeof swq);
+        std::memcpy(rwqq + j, &swqq, sizeof swqq);
+        std::memcpy(rwz + j, &swz, sizeof swz);
+        std::memcpy(rwzq + j, &swzq, sizeof swzq);
+        std::memcpy(ro + j, &so, sizeof so);
+    }
+}
+
+template <class V>
+[[gnu::always_inline]] inline void slope_column_sums_body(const float* const* rows, const float* fds, int nrows,
+                                                          std::size_t wv, std::size_t j_from, std::size_t j_to,
+                                                          float* __restrict m)
+{
+    constexpr std::size_t kN = sizeof(V) / sizeof(float);
+    for (std::size_t j = j_from; j < j_to; j += kN) {
+        V s0{}, sp{}, spp{}, sq{}, sqq{}, spq{}, sz{}, szp{}, szq{}, so{};
+        for (int r = 0; r < nrows; ++r) {
+            const float* row = rows[r];
+            const float fd = fds[r];
+            V rw, rwq, rwqq, rwz, rwzq, ro;
+            std::memcpy(&rw, row + j, sizeof rw);
+            std::memcpy(&rwq, row + wv + j, sizeof rwq);
+            std::memcpy(&rwqq, row + 2 * wv + j, sizeof rwqq);
+            std::memcpy(&rwz, row + 3 * wv + j, sizeof rwz);
+            std::memcpy(&rwzq, row + 4 * wv + j, sizeof rwzq);
+            std::memcpy(&ro, row + 5 * wv + j, sizeof ro);
+            s0 += rw;
+            sp += fd * rw;
+            spp += fd * fd * rw;
+            sq += rwq;
+            sqq += rwqq;
+            spq += fd * rwq;
+            sz += rwz;
+            szp += fd * rwz;
+            szq += rwzq;
+            so += ro;
+        }
+        const V all[10] = {s0, sp, spp, sq, sqq, spq, sz, szp, szq, so};
+        for (std::size_t e = 0; e < 10; ++e) std::memcpy(m + e * wv + j, &all[e], sizeof all[e]);
     }
 }
 
@@ -150,6 +221,22 @@ std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, flo
     return count_below_body(v, n, t);
 }
 
+using F8 = float __attribute__((vector_size(32)));
+
+[[gnu::target("avx2,popcnt")]] void slope_row_sums_avx2(const float* lw, const float* lz, const float* lo, int hp,
+                                                        std::size_t wv, float* rw, float* rwq, float* rwqq,
+                                                        float* rwz, float* rwzq, float* ro)
+{
+    slope_row_sums_body<F8>(lw, lz, lo, hp, wv, rw, rwq, rwqq, rwz, rwzq, ro);
+}
+
+[[gnu::target("avx2,popcnt")]] void slope_column_sums_avx2(const float* const* rows, const float* fds, int nrows,
+                                                           std::size_t wv, std::size_t j_from, std::size_t j_to,
+                                                           float* m)
+{
+    slope_column_sums_body<F8>(rows, fds, nrows, wv, j_from, j_to, m);
+}
+
 [[gnu::target("avx2,popcnt")]] void slope_tangents_avx2(const float* m, std::size_t w4, int jlo, int jhi,
                                                         double min_cells, double resolution_m, float* tangent)
 {
@@ -230,6 +317,24 @@ std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* 
     if (use_avx2()) return gather_in_avx2(v, n, lo, hi, buf);
 #endif
     return gather_in_sse(v, n, lo, hi, buf);
+}
+
+void slope_row_sums(const float* lw, const float* lz, const float* lo, int hp, std::size_t wv, float* rw, float* rwq,
+                    float* rwqq, float* rwz, float* rwzq, float* ro)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return slope_row_sums_avx2(lw, lz, lo, hp, wv, rw, rwq, rwqq, rwz, rwzq, ro);
+#endif
+    slope_row_sums_body<F4>(lw, lz, lo, hp, wv, rw, rwq, rwqq, rwz, rwzq, ro);
+}
+
+void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t wv, std::size_t j_from,
+                       std::size_t j_to, float* m)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return slope_column_sums_avx2(rows, fds, nrows, wv, j_from, j_to, m);
+#endif
+    slope_column_sums_body<F4>(rows, fds, nrows, wv, j_from, j_to, m);
 }
 
 void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min_cells, double resolution_m,

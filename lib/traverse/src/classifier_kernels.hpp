@@ -11,6 +11,10 @@
 
 namespace ugv::traverse::kernels {
 
+// The slope's per-cell rows are padded to whole vectors of this many floats (the widest
+// version's), so that either version covers them without a remainder loop.
+constexpr std::size_t kSlopeLanes = 8;
+
 // Whether the AVX2 versions run (the CPU has AVX2 and POPCNT, and allow_avx2 allows them).
 bool use_avx2();
 
@@ -20,6 +24,21 @@ std::size_t count_below(const float* v, std::size_t n, float t);
 // The values of v[0, n) in [lo, hi), in v's order, into buf (which holds n floats);
 // returns how many.
 std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* buf);
+
+// The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
+// of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, a vector
+// of cells at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and
+// to wv (a multiple of kSlopeLanes). Each sum starts at +0 and adds the taps in the order of
+// d, as a plain loop would (a padded tap adds +-0, which changes no sum: none is ever -0).
+void slope_row_sums(const float* lw, const float* lz, const float* lo, int hp, std::size_t wv, float* rw, float* rwq,
+                    float* rwqq, float* rwz, float* rwzq, float* ro);
+
+// The slope's column pass for one row of windows (the cells [j_from, j_to), multiples of
+// kSlopeLanes): the row sums of the window's rows (rows[r] points at row r's six sums, wv
+// apart; fds[r] its offset), added in order of the rows into the plane's ten moments (wv
+// apart in m), a vector of cells at a time in registers.
+void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t wv, std::size_t j_from,
+                       std::size_t j_to, float* m);
 
 // The slope's tangent for the cells [jlo, jhi) of a row of windows: m holds the windows'
 // ten moments (s0, sp, spp, sq, sqq, spq, sz, szp, szq, so), w4 apart; the plane's gradient
