@@ -558,33 +558,23 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
                              lowest_level_);
     }
-    // Without a branch (an unknown cell or ground compares false), the limits as the least
-    // floats at or above them (the same verdicts as the comparisons in double).
-    const std::vector<float>& ground_ = out.ground_m;
-    const float max_step_f = float_at_least(c.max_step_m), max_drop_f = float_at_least(c.max_drop_m);
-    edge_.resize(n);
-    {
-        const float *top = top_.data(), *bottom = bottom_.data(), *ground = ground_.data();
-        uint8_t* __restrict edge = edge_.data();
-        for (std::size_t k = 0; k < n; ++k)
-            edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step_f ? kHigh : 0) |
-                                           (ground[k] - bottom[k] >= max_drop_f ? kLow : 0));
-    }
+    // The height flags without a branch (an unknown cell or ground compares false), the
+    // limits as the least floats at or above them (the same verdicts as the comparisons in
+    // double).
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
     // already a negative obstacle. The means must step too (the cell's mean over the lowest
     // level around): the spread of passes seen with different pose errors moves a cell's
     // extremes, not its mean.
-    // The candidates flagged first, without a branch (step is NaN where unknown and compares
-    // false; the limits as floats, the same verdicts), then visited by memchr: they are few.
+    // The candidates flagged in the same pass (step is NaN where unknown and compares false),
+    // then visited by memchr: they are few.
+    edge_.resize(n);
     face_.resize(n);
-    {
-        const float face_step_f = float_at_least(c.face_mean_step_m);
-        const float *step = out.step_m.data(), *mean = g.mean_z_m.data(), *lowest_level = lowest_level_.data();
-        uint8_t* __restrict face = face_.data();
-        for (std::size_t k = 0; k < n; ++k)
-            face[k] = (step[k] >= max_step_f) & !(mean[k] - lowest_level[k] < face_step_f) ? 1 : 0;
-    }
+    kernels::height_flags(n, top_.data(), bottom_.data(), out.ground_m.data(), out.step_m.data(), g.mean_z_m.data(),
+                          lowest_level_.data(),
+                          {float_at_least(c.max_step_m), float_at_least(c.max_drop_m),
+                           float_at_least(c.face_mean_step_m), kHigh, kLow},
+                          edge_.data(), face_.data());
     for (const uint8_t *f = face_.data(), *end = face_.data() + n;
          (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
         const std::size_t k = static_cast<std::size_t>(f - face_.data());

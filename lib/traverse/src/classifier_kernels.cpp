@@ -174,6 +174,48 @@ template <class V>
     }
 }
 
+// The per-cell passes of steps 2-4: selects without a branch, so that they vectorise.
+[[gnu::always_inline]] inline void steps_and_drops_body(std::size_t n, const float* __restrict top,
+                                                        const float* __restrict bottom, const float* __restrict lowest,
+                                                        const float* __restrict highest, float* __restrict step,
+                                                        float* __restrict drop)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const float up = top[k] - lowest[k], down = highest[k] - bottom[k];  // std::max(0, x)
+        step[k] = top[k] == top[k] ? (0.0f < up ? up : 0.0f) : kNaN;
+        drop[k] = top[k] == top[k] ? (0.0f < down ? down : 0.0f) : kNaN;
+    }
+}
+
+[[gnu::always_inline]] inline void cell_levels_body(std::size_t n, const float* __restrict top,
+                                                    const float* __restrict bottom, const float* __restrict mean,
+                                                    const float* __restrict highest, const float* __restrict lowest,
+                                                    uint8_t* __restrict known, float* __restrict level)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const float m = mean[k];
+        const bool raised = (highest[k] == m) & (lowest[k] < m), lowered = (lowest[k] == m) & (highest[k] > m);
+        const float own = raised ? bottom[k] : (lowered ? top[k] : m);
+        known[k] = top[k] == top[k] ? 1 : 0;
+        level[k] = top[k] == top[k] ? own : m;
+    }
+}
+
+[[gnu::always_inline]] inline void height_flags_body(std::size_t n, const float* __restrict top,
+                                                     const float* __restrict bottom, const float* __restrict ground,
+                                                     const float* __restrict step, const float* __restrict mean,
+                                                     const float* __restrict lowest_level, const HeightLimits& limits,
+                                                     uint8_t* __restrict edge, uint8_t* __restrict face)
+{
+    const float max_step = limits.max_step, max_drop = limits.max_drop, face_step = limits.face_step;
+    const uint8_t high = limits.high_bit, low = limits.low_bit;
+    for (std::size_t k = 0; k < n; ++k) {
+        edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step ? high : 0) |
+                                       (ground[k] - bottom[k] >= max_drop ? low : 0));
+        face[k] = (step[k] >= max_step) & !(mean[k] - lowest_level[k] < face_step) ? 1 : 0;
+    }
+}
+
 // Without a branch, so that it vectorises: every quotient is computed and the verdicts
 // selected. std::max (a < b ? b : a) leaves a NaN slope out as the plain loop's test did.
 [[gnu::always_inline]] inline void slope_class_and_cost_body(std::size_t n, const float* __restrict step,
@@ -251,6 +293,28 @@ using F8 = float __attribute__((vector_size(32)));
 {
     supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
                             span);
+}
+
+[[gnu::target("avx2,popcnt")]] void steps_and_drops_avx2(std::size_t n, const float* top, const float* bottom,
+                                                         const float* lowest, const float* highest, float* step,
+                                                         float* drop)
+{
+    steps_and_drops_body(n, top, bottom, lowest, highest, step, drop);
+}
+
+[[gnu::target("avx2,popcnt")]] void cell_levels_avx2(std::size_t n, const float* top, const float* bottom,
+                                                     const float* mean, const float* highest, const float* lowest,
+                                                     uint8_t* known, float* level)
+{
+    cell_levels_body(n, top, bottom, mean, highest, lowest, known, level);
+}
+
+[[gnu::target("avx2,popcnt")]] void height_flags_avx2(std::size_t n, const float* top, const float* bottom,
+                                                      const float* ground, const float* step, const float* mean,
+                                                      const float* lowest_level, const HeightLimits& limits,
+                                                      uint8_t* edge, uint8_t* face)
+{
+    height_flags_body(n, top, bottom, ground, step, mean, lowest_level, limits, edge, face);
 }
 
 [[gnu::target("avx2,popcnt")]] void slope_class_and_cost_avx2(std::size_t n, const float* step, const float* drop,
@@ -357,6 +421,34 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
 #endif
     supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
                             span);
+}
+
+void steps_and_drops(std::size_t n, const float* top, const float* bottom, const float* lowest, const float* highest,
+                     float* step, float* drop)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return steps_and_drops_avx2(n, top, bottom, lowest, highest, step, drop);
+#endif
+    steps_and_drops_body(n, top, bottom, lowest, highest, step, drop);
+}
+
+void cell_levels(std::size_t n, const float* top, const float* bottom, const float* mean, const float* highest,
+                 const float* lowest, uint8_t* known, float* level)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return cell_levels_avx2(n, top, bottom, mean, highest, lowest, known, level);
+#endif
+    cell_levels_body(n, top, bottom, mean, highest, lowest, known, level);
+}
+
+void height_flags(std::size_t n, const float* top, const float* bottom, const float* ground, const float* step,
+                  const float* mean, const float* lowest_level, const HeightLimits& limits, uint8_t* edge,
+                  uint8_t* face)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return height_flags_avx2(n, top, bottom, ground, step, mean, lowest_level, limits, edge, face);
+#endif
+    height_flags_body(n, top, bottom, ground, step, mean, lowest_level, limits, edge, face);
 }
 
 void slope_class_and_cost(std::size_t n, const float* step, const float* drop, const float* roughness,

@@ -56,6 +56,29 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
                         const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
                         float* top, float* bottom, float* roughness, float* span);
 
+// Step 2's steps and drops: step := max(0, top - lowest), drop := max(0, highest - bottom)
+// where top is not NaN (a known cell), else NaN.
+void steps_and_drops(std::size_t n, const float* top, const float* bottom, const float* lowest, const float* highest,
+                     float* step, float* drop);
+
+// Step 3's levels: known := whether top is not NaN; level := the mean, but the bottom under
+// a mean raised (mean = highest > lowest), the top over a mean lowered (mean = lowest <
+// highest), for a known cell; an unknown cell keeps its mean.
+void cell_levels(std::size_t n, const float* top, const float* bottom, const float* mean, const float* highest,
+                 const float* lowest, uint8_t* known, float* level);
+
+// Step 4's height flags: high_bit where top - ground >= max_step, low_bit where ground -
+// bottom >= max_drop (false where any is NaN); face := 1 where step >= max_step and not
+// mean - lowest_level < face_step (the vertical faces' candidates), else 0.
+struct HeightLimits
+{
+    float max_step, max_drop, face_step;
+    uint8_t high_bit, low_bit;
+};
+void height_flags(std::size_t n, const float* top, const float* bottom, const float* ground, const float* step,
+                  const float* mean, const float* lowest_level, const HeightLimits& limits, uint8_t* edge,
+                  uint8_t* face);
+
 // Step 5 for the cells [0, n): a traversable cell without near_bit in flags[k] whose slope is
 // above max_slope_deg becomes an obstacle; a known cell's cost is 1 unless traversable,
 // else min(1, the largest of step/max_step, drop/max_drop, roughness/max_roughness and
