@@ -258,8 +258,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
     known_f_.resize(n);
-    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + 4);  // + 4: a window row's last vector
-    std::fill(parity_means_.end() - 4, parity_means_.end(), kNaN);
+    // + kWindowLanes: a window row's last vector.
+    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + kernels::kWindowLanes);
+    std::fill(parity_means_.end() - kernels::kWindowLanes, parity_means_.end(), kNaN);
     for (std::size_t k = 0; k < n; ++k) known_f_[k] = known_[k] ? 1.0f : 0.0f;
     for (int i = 0; i < nx; ++i) {
         float* even = &parity_means_[static_cast<std::size_t>(i) * half];
@@ -270,18 +271,18 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         for (std::size_t e = 0; e < w / 2; ++e) odd[e] = kr[2 * e + 1] ? mr[2 * e + 1] : kNaN;
         if (w & 1) odd[w / 2] = kNaN;
     }
-    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
-    const std::size_t row_vectors = (static_cast<std::size_t>(h) + 4) / 4;
-    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
+    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors.
+    constexpr std::size_t kL = kernels::kWindowLanes;
+    const std::size_t max_rs = (static_cast<std::size_t>(h) + kL) / kL * kL;
+    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * max_rs;
     win_v_.resize(max_points);
     win_lev_.resize(max_points);
-    win_flags_.resize(max_points / 4);
+    win_flags_.resize(max_points / kL);
     win_sel_.resize(max_points);
-    win_q_.resize(4 * row_vectors);
-    lane_known_.resize(4 * row_vectors);
-    lane_q_.resize(2 * row_vectors);
-    lane_z_.resize(2 * row_vectors);
-    lane_pz_.resize(2 * row_vectors);
+    win_q_.resize(max_rs);
+    lane_known_.resize(max_rs);
+    lane_z_.resize(max_rs);
+    lane_pz_.resize(max_rs);
     column_sums_.resize(3 * w);
     float *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -317,56 +318,30 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             if (m.s0 < 3) continue;
             const float zc = g.mean_z_m[static_cast<std::size_t>(i) * w + j];
             const float zref = std::isnan(zc) ? 0.0f : zc;
-            // The window's points relative to zref: nr rows of nv vectors of 4 (the row's nq
-            // points, then NaN; NaN also where unknown). count of them are known (the
-            // geometry's s0).
-            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1, nv = (nq + 3) / 4;
+            // The window's points relative to zref: nr rows of rs lanes (the row's nq points,
+            // then NaN; NaN also where unknown). count of them are known (the geometry's s0).
+            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1;
+            const std::size_t rs = (static_cast<std::size_t>(nq) + kL - 1) / kL * kL;
             const std::size_t count = static_cast<std::size_t>(m.s0);
             float* __restrict v = win_v_.data();
             float* __restrict lev = win_lev_.data();
             float* __restrict fq = win_q_.data();
-            for (int t = 0; t < 4 * nv; ++t) {
-                fq[t] = t < nq ? static_cast<float>(qlo + 2 * t - j) : 0.0f;
-                lane_known_[static_cast<std::size_t>(t)] = t < nq ? -1 : 0;
+            for (std::size_t t = 0; t < rs; ++t) {
+                const bool column = t < static_cast<std::size_t>(nq);
+                fq[t] = column ? static_cast<float>(qlo + 2 * static_cast<int>(t) - j) : 0.0f;
+                lane_known_[t] = column ? -1 : 0;
             }
-            // The points, and their heights' moments per lane of the window's columns, then
-            // across them. The sums are exact (floats times small integers, in double), so
-            // their order does not matter; an unknown point adds +0 to a sum that started at
-            // +0. Also the largest |height|, for the float outlier test's error bound.
-            const F4 zr = {zref, zref, zref, zref};
-            D2* __restrict az = lane_z_.data();
-            D2* __restrict apz = lane_pz_.data();
-            D2* __restrict dq = lane_q_.data();
-            for (int c = 0; c < nv; ++c) {
-                const F4 q = load4(fq + 4 * c);
-                dq[2 * c] = low2(q);
-                dq[2 * c + 1] = high2(q);
-                az[2 * c] = az[2 * c + 1] = apz[2 * c] = apz[2 * c + 1] = D2{0.0, 0.0};
-            }
-            F4 largest = {0, 0, 0, 0};
-            for (int r = 0; r < nr; ++r) {
-                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
-                const double p = plo + 2 * r - i;
-                const D2 fp = {p, p};
-                for (int c = 0; c < nv; ++c) {
-                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
-                    const F4 x0 = load4(row + 4 * c) - zr;
-                    const F4 x = (F4)(((I4)x0 & in) | ((I4)nan4() & ~in));
-                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, x);
-                    const F4 xz = (F4)((I4)x & (x == x));
-                    largest = abs4(xz) > largest ? abs4(xz) : largest;
-                    const D2 lo = low2(xz), hi = high2(xz);
-                    az[2 * c] += lo;
-                    az[2 * c + 1] += hi;
-                    apz[2 * c] += fp * lo;
-                    apz[2 * c + 1] += fp * hi;
-                }
-            }
-            for (int e = 0; e < 2 * nv; ++e) {
-                const D2 qz = dq[e] * az[e];
-                m.sz += az[e][0] + az[e][1];
-                m.spz += apz[e][0] + apz[e][1];
-                m.sqz += qz[0] + qz[1];
+            // The points, and their heights' moments per lane of the window's columns
+            // (classifier_kernels), then across them. The sums are exact (floats times small
+            // integers, in double), so their order does not matter. Also the largest
+            // |height|, for the float outlier test's error bound.
+            const float* first_row = &parity_means_[((qlo & 1) * nx + plo) * half + qlo / 2];
+            const float largest = kernels::window_points(first_row, 2 * half, nr, plo - i, rs, lane_known_.data(), zref,
+                                                         v, lane_z_.data(), lane_pz_.data());
+            for (std::size_t t = 0; t < rs; ++t) {
+                m.sz += lane_z_[t];
+                m.spz += lane_pz_[t];
+                m.sqz += static_cast<double>(fq[t]) * lane_z_[t];
             }
             const PlaneFit first = plane_from_moments(m, nullptr);
             // The second plane: without the points more than band off the first (unknown ones
@@ -375,42 +350,24 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             // plane is the first): the float distance is within tol of the double one the
             // reference compares (a few roundings of values below `bound`), so only a point
             // within tol of the band needs the reference's double test.
-            const float bound = std::max({largest[0], largest[1], largest[2], largest[3]}) + std::abs(first.a) +
+            const float bound = largest + std::abs(first.a) +
                                 static_cast<float>(h) * (std::abs(first.gp) + std::abs(first.gq)) +
                                 static_cast<float>(band);
             const float tol = bound * 0x1p-18f;
-            const F4 bandf = {static_cast<float>(band), static_cast<float>(band), static_cast<float>(band),
-                              static_cast<float>(band)};
-            const F4 tol4 = {tol, tol, tol, tol}, fa4 = {first.a, first.a, first.a, first.a};
-            const F4 gq4 = {first.gq, first.gq, first.gq, first.gq};
-            const float level = first.a + zref;
-            const F4 level4 = {level, level, level, level};
-            I4 below = {0, 0, 0, 0};
-            unsigned any_flag = 0;
-            uint8_t* __restrict flags = win_flags_.data();  // per vector: the lanes off or near the band
-            for (int r = 0; r < nr; ++r) {
-                const float fp = static_cast<float>(plo + 2 * r - i), gp = first.gp * fp;
-                const F4 gp4 = {gp, gp, gp, gp};
-                for (int c = 0; c < nv; ++c) {
-                    const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
-                    const F4 x = load4(v + at), gqq = gq4 * load4(fq + 4 * c);
-                    const F4 d = abs4(x - ((fa4 + gp4) + gqq));
-                    const unsigned flag = lane_bits((d > bandf) | (abs4(d - bandf) <= tol4));
-                    flags[at / 4] = static_cast<uint8_t>(flag);
-                    any_flag |= flag;
-                    const F4 l = x + (zr - (gp4 + gqq));
-                    store4(lev + at, l);
-                    below -= l < level4;
-                }
-            }
+            uint8_t* __restrict flags = win_flags_.data();  // per kL points: those off or near the band
+            std::size_t below_level = 0;
+            const unsigned any_flag = kernels::level_window(
+                v, nr, plo - i, rs, fq,
+                {first.a, first.gp, first.gq, zref, first.a + zref, static_cast<float>(band), tol}, lev, flags,
+                below_level);
             bool subtracted = false;
             if (any_flag) {  // the flagged points tested as the reference, in its order
                 const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv); ++vec)
+                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * rs / kL; ++vec)
                     for (unsigned lanes = flags[vec]; lanes != 0; lanes &= lanes - 1) {
-                        const std::size_t at = vec * 4 + static_cast<std::size_t>(__builtin_ctz(lanes));
-                        const int r = static_cast<int>(vec / static_cast<std::size_t>(nv));
-                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % (4 * static_cast<std::size_t>(nv))];
+                        const std::size_t at = vec * kL + static_cast<std::size_t>(__builtin_ctz(lanes));
+                        const int r = static_cast<int>(at / rs);
+                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % rs];
                         const double x = v[at];
                         if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
                         subtracted = true;
@@ -426,28 +383,14 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
                     }
             }
             PlaneFit fit = first;
-            std::size_t below_level = static_cast<std::size_t>(below[0] + below[1] + below[2] + below[3]);
             if (subtracted) {
                 // Levelled again along the second plane (each point less its slope; unknown
-                // points stay NaN), counted again below its level.
+                // points stay NaN), counted again below its level (the flags are not used).
                 fit = plane_from_moments(m, &first);
-                const F4 fgq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
-                const float fit_level = fit.a + zref;
-                const F4 fit_level4 = {fit_level, fit_level, fit_level, fit_level};
-                I4 fit_below = {0, 0, 0, 0};
-                for (int r = 0; r < nr; ++r) {
-                    const float gp = fit.gp * static_cast<float>(plo + 2 * r - i);
-                    const F4 gp4 = {gp, gp, gp, gp};
-                    for (int c = 0; c < nv; ++c) {
-                        const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
-                        const F4 l = load4(v + at) + (zr - (gp4 + fgq4 * load4(fq + 4 * c)));
-                        store4(lev + at, l);
-                        fit_below -= l < fit_level4;
-                    }
-                }
-                below_level = static_cast<std::size_t>(fit_below[0] + fit_below[1] + fit_below[2] + fit_below[3]);
+                kernels::level_window(v, nr, plo - i, rs, fq, {fit.a, fit.gp, fit.gq, zref, fit.a + zref, 0.0f, 0.0f},
+                                      lev, flags, below_level);
             }
-            const std::size_t points = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv) * 4;
+            const std::size_t points = static_cast<std::size_t>(nr) * rs;
             lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lev, points, count, ground_rank(count),
                                                                          fit.a + zref, below_level, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};

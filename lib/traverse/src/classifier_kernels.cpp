@@ -365,6 +365,23 @@ constexpr PackTable kPack{};
 
 }  // namespace
 
+// The local ground's window loops: 4 lanes for the baseline, 8 for AVX2 (window_kernels.inc).
+#define UGV_WINDOW_LANES 4
+#define UGV_WINDOW_NS window4
+#include "window_kernels.inc"
+#undef UGV_WINDOW_LANES
+#undef UGV_WINDOW_NS
+#if defined(UGV_TRAVERSE_AVX2)
+#pragma GCC push_options
+#pragma GCC target("avx2,popcnt")
+#define UGV_WINDOW_LANES 8
+#define UGV_WINDOW_NS window8
+#include "window_kernels.inc"
+#undef UGV_WINDOW_LANES
+#undef UGV_WINDOW_NS
+#pragma GCC pop_options
+#endif
+
 bool use_avx2() { return cpu_has_avx2() && g_avx2_allowed.load(std::memory_order_relaxed); }
 
 std::size_t count_below(const float* v, std::size_t n, float t)
@@ -421,6 +438,24 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
 #endif
     supported_extremes_body(n, mean, highest, lowest, variance, count, measured, min_support, top, bottom, roughness,
                             span);
+}
+
+float window_points(const float* first_row, std::size_t row_stride, int nr, int p0, std::size_t rs,
+                    const int32_t* lane_known, float zref, float* v, double* sum_z, double* sum_pz)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return window8::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
+#endif
+    return window4::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
+}
+
+unsigned level_window(const float* v, int nr, int p0, std::size_t rs, const float* fq, const WindowPlane& plane,
+                      float* lev, uint8_t* flags, std::size_t& below)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return window8::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
+#endif
+    return window4::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
 }
 
 void steps_and_drops(std::size_t n, const float* top, const float* bottom, const float* lowest, const float* highest,

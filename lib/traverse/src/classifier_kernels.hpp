@@ -15,6 +15,9 @@ namespace ugv::traverse::kernels {
 // version's), so that either version covers them without a remainder loop.
 constexpr std::size_t kSlopeLanes = 8;
 
+// A local ground window's rows of points are padded to whole vectors of this many floats.
+constexpr std::size_t kWindowLanes = 8;
+
 // Whether the AVX2 versions run (the CPU has AVX2 and POPCNT, and allow_avx2 allows them).
 bool use_avx2();
 
@@ -55,6 +58,26 @@ void slope_tangents(const float* m, std::size_t w4, int jlo, int jhi, double min
 void supported_extremes(std::size_t n, const float* mean, const float* highest, const float* lowest,
                         const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
                         float* top, float* bottom, float* roughness, float* span);
+
+// A local ground window's points: nr rows, row r of them at first_row + r row_stride (its
+// row offset p0 + 2 r), rs lanes each (a multiple of kWindowLanes; lane_known[t] is -1 for
+// a lane that holds a column, else 0). v := the points less zref, rs apart, NaN where
+// unknown or past the row's columns; per lane t, sum_z[t] and sum_pz[t] := the sums over
+// the rows of the known heights and of the heights times p (in double). Returns the largest
+// |height|.
+float window_points(const float* first_row, std::size_t row_stride, int nr, int p0, std::size_t rs,
+                    const int32_t* lane_known, float zref, float* v, double* sum_z, double* sum_pz);
+
+// A window's points v (as window_points left them, fq[t] lane t's column offset) levelled
+// along the plane z = a + gp p + gq q: lev := v + (zref - (gp p + gq q)) (NaN stays NaN);
+// below := how many of lev are below level; per kWindowLanes points, flags (bit t for point
+// t) := |v - (a + gp p + gq q)| is above band or within tol of it. Returns the flags' OR.
+struct WindowPlane
+{
+    float a, gp, gq, zref, level, band, tol;
+};
+unsigned level_window(const float* v, int nr, int p0, std::size_t rs, const float* fq, const WindowPlane& plane,
+                      float* lev, uint8_t* flags, std::size_t& below);
 
 // Step 2's steps and drops: step := max(0, top - lowest), drop := max(0, highest - bottom)
 // where top is not NaN (a known cell), else NaN.
