@@ -449,17 +449,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
                               window_, highest_);
     }
-    // Without a branch, so that it vectorises: NaN where unknown, as reset left it (a known
-    // cell has a top and a bottom, and the windows around it are finite).
-    {
-        const float *top = top_.data(), *bottom = bottom_.data(), *lowest = lowest_.data(), *highest = highest_.data();
-        float *__restrict step = out.step_m.data(), *__restrict drop = out.drop_m.data();
-        for (std::size_t k = 0; k < n; ++k) {
-            const float up = top[k] - lowest[k], down = highest[k] - bottom[k];  // std::max(0, x)
-            step[k] = top[k] == top[k] ? (0.0f < up ? up : 0.0f) : kNaN;
-            drop[k] = top[k] == top[k] ? (0.0f < down ? down : 0.0f) : kNaN;
-        }
-    }
+    // NaN where unknown (a known cell has a top and a bottom, and the windows around it are
+    // finite).
+    kernels::steps_and_drops(n, top_.data(), bottom_.data(), lowest_.data(), highest_.data(), out.step_m.data(),
+                             out.drop_m.data());
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
     // ground, a negative obstacle when its bottom lies max_drop below it. The local ground
@@ -479,20 +472,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     levels_.nx = nx;
     levels_.ny = ny;
     levels_.mean_z_m.resize(n);
-    {
-        // Without a branch, so that it vectorises; unknown cells keep their mean.
-        const float *top = top_.data(), *bottom = bottom_.data(), *mean = g.mean_z_m.data();
-        const float *highest = g.max_z_m.data(), *lowest = g.min_z_m.data();
-        uint8_t* __restrict known = known_.data();
-        float* __restrict level = levels_.mean_z_m.data();
-        for (std::size_t k = 0; k < n; ++k) {
-            const float m = mean[k];
-            const bool raised = (highest[k] == m) & (lowest[k] < m), lowered = (lowest[k] == m) & (highest[k] > m);
-            const float own = raised ? bottom[k] : (lowered ? top[k] : m);
-            known[k] = top[k] == top[k] ? 1 : 0;
-            level[k] = top[k] == top[k] ? own : m;
-        }
-    }
+    // Unknown cells keep their mean.
+    kernels::cell_levels(n, top_.data(), bottom_.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
+                         known_.data(), levels_.mean_z_m.data());
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
     {
