@@ -409,28 +409,25 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     bottom_.resize(n);
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
-    const bool have_age = g.age_s.size() == n;
-    float memo_age = kNaN;  // cells fused from one cloud share an age, so their certainty
-    double memo_certainty = 1.0;
-    measured_.assign(n, 0);  // measured and not decayed
-    for (std::size_t k = 0; k < n; ++k) {
-        if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
-        // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
-        // terrain map then shows max = min = mean. Nothing was seen there.
-        if (g.count[k] >= 2 && g.max_z_m[k] == g.min_z_m[k] && g.max_z_m[k] == g.mean_z_m[k]) continue;
-        double certainty = 1.0;
-        if (have_age && std::isfinite(g.age_s[k])) {
-            const float age = g.age_s[k];
-            if (age != memo_age) {
-                memo_age = age;
-                memo_certainty = std::max(0.0, 1.0 - age / c.max_age_s) *
-                                 std::max(0.0, 1.0 - odometer.driven_since(age) / c.max_driven_m);
-            }
-            certainty = memo_certainty;
-        }
-        out.certainty[k] = static_cast<float>(certainty);
-        measured_[k] = certainty > 0.0 ? 1 : 0;  // else decayed: UNKNOWN
-    }
+    struct AgeContext
+    {
+        const ClassifierConfig* config;
+        const Odometer* odometer;
+    } const age_context{&c, &odometer};
+    const kernels::CertaintyOf certainty_of{[](const void* context, float age) {
+                                                const auto& x = *static_cast<const AgeContext*>(context);
+                                                return std::max(0.0, 1.0 - age / x.config->max_age_s) *
+                                                       std::max(0.0, 1.0 - x.odometer->driven_since(age) /
+                                                                              x.config->max_driven_m);
+                                            },
+                                            &age_context};
+    // Measured and not decayed (a certainty of 0: UNKNOWN). Only other cells' spread shares
+    // (section 3.5), no sample measured in the cell: the terrain map then shows max = min =
+    // mean, and nothing was seen there.
+    measured_.resize(n);
+    kernels::certainties(n, g.count.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
+                         g.age_s.size() == n ? g.age_s.data() : nullptr, certainty_of, out.certainty.data(),
+                         measured_.data());
     // The highest sample of a cell when enough samples stand near it, else the mean: one
     // stray return does not make a cell tall. Samples near the extreme, estimated from the
     // (weighted) variance: a fraction p of the samples at distance d from the mean gives a

@@ -365,20 +365,21 @@ constexpr PackTable kPack{};
 
 }  // namespace
 
-// The local ground's window loops: 4 lanes for the baseline, 8 for AVX2 (window_kernels.inc).
-#define UGV_WINDOW_LANES 4
-#define UGV_WINDOW_NS window4
-#include "window_kernels.inc"
-#undef UGV_WINDOW_LANES
-#undef UGV_WINDOW_NS
+// The loops that need the lanes' own intrinsics: 4 lanes for the baseline, 8 for AVX2
+// (lane_kernels.inc).
+#define UGV_LANES 4
+#define UGV_LANES_NS lanes4
+#include "lane_kernels.inc"
+#undef UGV_LANES
+#undef UGV_LANES_NS
 #if defined(UGV_TRAVERSE_AVX2)
 #pragma GCC push_options
 #pragma GCC target("avx2,popcnt")
-#define UGV_WINDOW_LANES 8
-#define UGV_WINDOW_NS window8
-#include "window_kernels.inc"
-#undef UGV_WINDOW_LANES
-#undef UGV_WINDOW_NS
+#define UGV_LANES 8
+#define UGV_LANES_NS lanes8
+#include "lane_kernels.inc"
+#undef UGV_LANES
+#undef UGV_LANES_NS
 #pragma GCC pop_options
 #endif
 
@@ -440,22 +441,31 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
                             span);
 }
 
+void certainties(std::size_t n, const int32_t* count, const float* mean, const float* highest, const float* lowest,
+                 const float* age, const CertaintyOf& of, float* certainty, uint8_t* measured)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return lanes8::certainties(n, count, mean, highest, lowest, age, of, certainty, measured);
+#endif
+    lanes4::certainties(n, count, mean, highest, lowest, age, of, certainty, measured);
+}
+
 float window_points(const float* first_row, std::size_t row_stride, int nr, int p0, std::size_t rs,
                     const int32_t* lane_known, float zref, float* v, double* sum_z, double* sum_pz)
 {
 #if defined(UGV_TRAVERSE_AVX2)
-    if (use_avx2()) return window8::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
+    if (use_avx2()) return lanes8::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
 #endif
-    return window4::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
+    return lanes4::window_points(first_row, row_stride, nr, p0, rs, lane_known, zref, v, sum_z, sum_pz);
 }
 
 unsigned level_window(const float* v, int nr, int p0, std::size_t rs, const float* fq, const WindowPlane& plane,
                       float* lev, uint8_t* flags, std::size_t& below)
 {
 #if defined(UGV_TRAVERSE_AVX2)
-    if (use_avx2()) return window8::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
+    if (use_avx2()) return lanes8::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
 #endif
-    return window4::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
+    return lanes4::level_window(v, nr, p0, rs, fq, plane, lev, flags, below);
 }
 
 void steps_and_drops(std::size_t n, const float* top, const float* bottom, const float* lowest, const float* highest,

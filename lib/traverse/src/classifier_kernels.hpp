@@ -59,6 +59,19 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
                         const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
                         float* top, float* bottom, float* roughness, float* span);
 
+// Step 1's certainty: for a cell seen (a count above 0, a finite mean, not only other
+// cells' spread shares: count >= 2 with max = min = mean), certainty := of(age) where age
+// is finite (age may be null: none), else 1, and measured := certainty > 0; the certainty
+// of a cell not seen is left as it is, measured := 0. of is called once per run of cells of
+// one age (cells fused from one cloud share it).
+struct CertaintyOf
+{
+    double (*certainty)(const void* context, float age);
+    const void* context;
+};
+void certainties(std::size_t n, const int32_t* count, const float* mean, const float* highest, const float* lowest,
+                 const float* age, const CertaintyOf& of, float* certainty, uint8_t* measured);
+
 // A local ground window's points: nr rows, row r of them at first_row + r row_stride (its
 // row offset p0 + 2 r), rs lanes each (a multiple of kWindowLanes; lane_known[t] is -1 for
 // a lane that holds a column, else 0). v := the points less zref, rs apart, NaN where
