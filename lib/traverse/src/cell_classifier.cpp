@@ -515,21 +515,31 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                 if ((p != i || q != j) && (edge_[static_cast<std::size_t>(p) * ny + q] & bit)) return true;
         return false;
     };
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            const bool known = !std::isnan(top_[k]);
-            out.cell_class[k] = known ? CellClass::traversable : CellClass::unknown;
-            if (!(edge_[k] & (kHigh | kLow))) continue;  // rare (only known cells have them)
-            CellClass cls = CellClass::traversable;
-            const bool few = g.count[k] < c.min_support_samples;
-            if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
-                cls = CellClass::obstacle;
-            else if ((edge_[k] & kLow) && !(few && !neighbour_has(i, j, kLow)))
-                cls = CellClass::negative_obstacle;
-            out.cell_class[k] = cls;
-        }
+    auto height_class = [&](std::size_t k) {
+        if (!(edge_[k] & (kHigh | kLow))) return;  // only known cells have them
+        const int i = static_cast<int>(k / static_cast<std::size_t>(ny));
+        const int j = static_cast<int>(k % static_cast<std::size_t>(ny));
+        CellClass cls = CellClass::traversable;
+        const bool few = g.count[k] < c.min_support_samples;
+        if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
+            cls = CellClass::obstacle;
+        else if ((edge_[k] & kLow) && !(few && !neighbour_has(i, j, kLow)))
+            cls = CellClass::negative_obstacle;
+        out.cell_class[k] = cls;
+    };
+    // Known cells traversable, the others unknown: known_ is 1 or 0, the classes' values.
+    static_assert(static_cast<uint8_t>(CellClass::traversable) == 1 && static_cast<uint8_t>(CellClass::unknown) == 0);
+    std::memcpy(out.cell_class.data(), known_.data(), n);
+    // Then the few cells with a height flag, found eight flags at a time (edge_ holds only
+    // kHigh and kLow so far).
+    std::size_t k0 = 0;
+    for (; k0 + 8 <= n; k0 += 8) {
+        uint64_t eight;
+        std::memcpy(&eight, &edge_[k0], sizeof eight);
+        if (eight != 0)
+            for (std::size_t k = k0; k < k0 + 8; ++k) height_class(k);
     }
+    for (; k0 < n; ++k0) height_class(k0);
 
     // 4. Slope: the plane fitted to the means of the cells within slope_radius that are not
     // step obstacles (a box would tilt the ground beside it). Separable: along each row,
@@ -560,13 +570,8 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     auto row_pass = [&](int i) {
         if (!row_known_[static_cast<std::size_t>(i)]) return;
         float *lw = line_w_.data() + hw, *lz = line_z_.data() + hw, *lo = line_o_.data() + hw;
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * w + j;
-            const bool known = !std::isnan(top_[k]), counts = known && out.cell_class[k] == CellClass::traversable;
-            lw[j] = counts ? 1.0f : 0.0f;
-            lz[j] = counts ? g.mean_z_m[k] - z0 : 0.0f;
-            lo[j] = known && !counts ? 1.0f : 0.0f;
-        }
+        const std::size_t k = static_cast<std::size_t>(i) * w;
+        kernels::slope_row_inputs(w, &known_[k], &out.cell_class[k], &g.mean_z_m[k], z0, lw, lz, lo);
         float* r = rows(i);
         kernels::slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, wv, r + W * wv, r + WQ * wv,
                                 r + WQQ * wv, r + WZ * wv, r + WZQ * wv, r + OBST * wv);

@@ -72,6 +72,19 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     }
 }
 
+[[gnu::always_inline]] inline void slope_row_inputs_body(std::size_t n, const uint8_t* __restrict known,
+                                                         const CellClass* __restrict cell_class,
+                                                         const float* __restrict mean, float z0, float* __restrict lw,
+                                                         float* __restrict lz, float* __restrict lo)
+{
+    for (std::size_t j = 0; j < n; ++j) {
+        const bool counts = (known[j] != 0) & (cell_class[j] == CellClass::traversable);
+        lw[j] = counts ? 1.0f : 0.0f;
+        lz[j] = counts ? mean[j] - z0 : 0.0f;
+        lo[j] = (known[j] != 0) & !counts ? 1.0f : 0.0f;
+    }
+}
+
 // The slope's sums, V a vector of 4 or 8 floats (GCC/Clang vector extensions; each lane the
 // scalar expression's IEEE result, so both widths give the same sums). memcpy for the
 // unaligned loads and stores, so that no function passes a V by value.
@@ -265,6 +278,13 @@ std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, flo
 
 using F8 = float __attribute__((vector_size(32)));
 
+[[gnu::target("avx2,popcnt")]] void slope_row_inputs_avx2(std::size_t n, const uint8_t* known,
+                                                          const CellClass* cell_class, const float* mean, float z0,
+                                                          float* lw, float* lz, float* lo)
+{
+    slope_row_inputs_body(n, known, cell_class, mean, z0, lw, lz, lo);
+}
+
 [[gnu::target("avx2,popcnt")]] void slope_row_sums_avx2(const float* lw, const float* lz, const float* lo, int hp,
                                                         std::size_t wv, float* rw, float* rwq, float* rwqq,
                                                         float* rwz, float* rwzq, float* ro)
@@ -399,6 +419,15 @@ std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* 
     if (use_avx2()) return gather_in_avx2(v, n, lo, hi, buf);
 #endif
     return gather_in_sse(v, n, lo, hi, buf);
+}
+
+void slope_row_inputs(std::size_t n, const uint8_t* known, const CellClass* cell_class, const float* mean, float z0,
+                      float* lw, float* lz, float* lo)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return slope_row_inputs_avx2(n, known, cell_class, mean, z0, lw, lz, lo);
+#endif
+    slope_row_inputs_body(n, known, cell_class, mean, z0, lw, lz, lo);
 }
 
 void slope_row_sums(const float* lw, const float* lz, const float* lo, int hp, std::size_t wv, float* rw, float* rwq,

@@ -28,6 +28,12 @@ std::size_t count_below(const float* v, std::size_t n, float t);
 // returns how many.
 std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* buf);
 
+// The slope's inputs for a row of n cells: a cell counts when known and traversable; lw :=
+// 1 where it counts, else 0; lz := mean - z0 where it counts, else 0; lo := 1 where known
+// and not counting (an obstacle), else 0.
+void slope_row_inputs(std::size_t n, const uint8_t* known, const CellClass* cell_class, const float* mean, float z0,
+                      float* lw, float* lz, float* lo);
+
 // The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
 // of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, a vector
 // of cells at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and
