@@ -5,7 +5,6 @@
 #include "ugv/simd/float4.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -44,32 +43,28 @@ float float_at_least(double x)
 }
 
 // What a stable sort of x[0, m) (m <= 12, no NaN) would put at r, or the first value (in
-// x's order) equal to it (+0 and -0): the x[a] with r in [less_a, less_a + equal_a) and no
-// equal value before it. Without a branch (the sorts' data-dependent branches were most of
-// the percentile's time): each x[b] compared with all, NaN in the unused lanes compares false.
+// x's order) equal to it (+0 and -0): the first x[a] with r in [less_a, less_a + equal_a)
+// (the values there are all equal). Without a branch on the data (the sorts' data-dependent
+// branches were most of the percentile's time): each x[b] compared with all, NaN in the
+// unused lanes compares false.
 float rank_of_few(const float* x, std::size_t m, std::size_t r)
 {
     float pad[12];
     for (std::size_t e = 0; e < 12; ++e) pad[e] = e < m ? x[e] : kNaN;
     const F4 a[3] = {load4(pad), load4(pad + 4), load4(pad + 8)};
-    const I4 idx[3] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {8, 9, 10, 11}};
-    I4 less[3] = {}, equal[3] = {}, before[3] = {};
+    I4 less[3] = {}, equal[3] = {};
     for (int b = 0; b < 12; ++b) {
         const F4 xb = {pad[b], pad[b], pad[b], pad[b]};
-        const I4 bb = {b, b, b, b};
         for (int j = 0; j < 3; ++j) {
-            const I4 eq = xb == a[j];
             less[j] -= xb < a[j];
-            equal[j] -= eq;
-            before[j] -= eq & (bb < idx[j]);
+            equal[j] -= xb == a[j];
         }
     }
     const int32_t ri = static_cast<int32_t>(r);
     const I4 r4 = {ri, ri, ri, ri};
-    I4 pick = {};
-    for (int j = 0; j < 3; ++j)
-        pick |= (I4)a[j] & ((less[j] <= r4) & (r4 < less[j] + equal[j]) & (before[j] == I4{}));
-    return std::bit_cast<float>(pick[0] | pick[1] | pick[2] | pick[3]);
+    unsigned lanes = 0;  // bit a: x[a] is of rank r
+    for (int j = 0; j < 3; ++j) lanes |= lane_bits((less[j] <= r4) & (r4 < less[j] + equal[j])) << (4 * j);
+    return lanes != 0 ? pad[__builtin_ctz(lanes)] : 0.0f;  // never 0 lanes (r < m): kept as a guard
 }
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
