@@ -290,12 +290,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         std::fill(column_sums_.begin(), column_sums_.end(), 0.0f);
         for (int p = plo; p <= phi; p += 2) {
             const float dp = static_cast<float>(p - i);
-            const float* __restrict kr = &known_f_[p * w];
-            for (std::size_t q = 0; q < w; ++q) {
-                c1[q] += kr[q];
-                cp[q] += dp * kr[q];
-                cpp[q] += dp * dp * kr[q];
-            }
+            kernels::add_row_moments(w, &known_f_[p * w], dp, c1, cp, cpp);
         }
         for (int b = 0; b < ly; ++b) {
             if (!need[b]) continue;

@@ -72,6 +72,17 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     }
 }
 
+[[gnu::always_inline]] inline void add_row_moments_body(std::size_t n, const float* __restrict known, float dp,
+                                                        float* __restrict c1, float* __restrict cp,
+                                                        float* __restrict cpp)
+{
+    for (std::size_t q = 0; q < n; ++q) {
+        c1[q] += known[q];
+        cp[q] += dp * known[q];
+        cpp[q] += dp * dp * known[q];
+    }
+}
+
 [[gnu::always_inline]] inline void slope_row_inputs_body(std::size_t n, const uint8_t* __restrict known,
                                                          const CellClass* __restrict cell_class,
                                                          const float* __restrict mean, float z0, float* __restrict lw,
@@ -278,6 +289,12 @@ std::size_t gather_in_sse(const float* v, std::size_t n, float lo, float hi, flo
 
 using F8 = float __attribute__((vector_size(32)));
 
+[[gnu::target("avx2,popcnt")]] void add_row_moments_avx2(std::size_t n, const float* known, float dp, float* c1,
+                                                         float* cp, float* cpp)
+{
+    add_row_moments_body(n, known, dp, c1, cp, cpp);
+}
+
 [[gnu::target("avx2,popcnt")]] void slope_row_inputs_avx2(std::size_t n, const uint8_t* known,
                                                           const CellClass* cell_class, const float* mean, float z0,
                                                           float* lw, float* lz, float* lo)
@@ -419,6 +436,14 @@ std::size_t gather_in(const float* v, std::size_t n, float lo, float hi, float* 
     if (use_avx2()) return gather_in_avx2(v, n, lo, hi, buf);
 #endif
     return gather_in_sse(v, n, lo, hi, buf);
+}
+
+void add_row_moments(std::size_t n, const float* known, float dp, float* c1, float* cp, float* cpp)
+{
+#if defined(UGV_TRAVERSE_AVX2)
+    if (use_avx2()) return add_row_moments_avx2(n, known, dp, c1, cp, cpp);
+#endif
+    add_row_moments_body(n, known, dp, c1, cp, cpp);
 }
 
 void slope_row_inputs(std::size_t n, const uint8_t* known, const CellClass* cell_class, const float* mean, float z0,

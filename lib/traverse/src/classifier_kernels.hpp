@@ -65,6 +65,10 @@ void supported_extremes(std::size_t n, const float* mean, const float* highest, 
                         const float* variance, const int32_t* count, const uint8_t* measured, double min_support,
                         float* top, float* bottom, float* roughness, float* span);
 
+// The local ground's column sums: for q in [0, n), c1[q] += known[q], cp[q] += dp known[q],
+// cpp[q] += dp dp known[q] (known: 1 or 0).
+void add_row_moments(std::size_t n, const float* known, float dp, float* c1, float* cp, float* cpp);
+
 // Step 1's certainty: for a cell seen (a count above 0, a finite mean, not only other
 // cells' spread shares: count >= 2 with max = min = mean), certainty := of(age) where age
 // is finite (age may be null: none), else 1, and measured := certainty > 0; the certainty
