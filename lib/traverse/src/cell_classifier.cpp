@@ -22,7 +22,6 @@ namespace {
 using namespace simd;
 using F4 = Float4;
 using I4 = Int4;
-using D2 = Double2;
 using kernels::count_below;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
