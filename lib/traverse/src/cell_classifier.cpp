@@ -5,7 +5,6 @@
 #include "ugv/simd/float4.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -23,7 +22,6 @@ namespace {
 using namespace simd;
 using F4 = Float4;
 using I4 = Int4;
-using D2 = Double2;
 using kernels::count_below;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -44,32 +42,28 @@ float float_at_least(double x)
 }
 
 // What a stable sort of x[0, m) (m <= 12, no NaN) would put at r, or the first value (in
-// x's order) equal to it (+0 and -0): the x[a] with r in [less_a, less_a + equal_a) and no
-// equal value before it. Without a branch (the sorts' data-dependent branches were most of
-// the percentile's time): each x[b] compared with all, NaN in the unused lanes compares false.
+// x's order) equal to it (+0 and -0): the first x[a] with r in [less_a, less_a + equal_a)
+// (the values there are all equal). Without a branch on the data (the sorts' data-dependent
+// branches were most of the percentile's time): each x[b] compared with all, NaN in the
+// unused lanes compares false.
 float rank_of_few(const float* x, std::size_t m, std::size_t r)
 {
     float pad[12];
     for (std::size_t e = 0; e < 12; ++e) pad[e] = e < m ? x[e] : kNaN;
     const F4 a[3] = {load4(pad), load4(pad + 4), load4(pad + 8)};
-    const I4 idx[3] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {8, 9, 10, 11}};
-    I4 less[3] = {}, equal[3] = {}, before[3] = {};
+    I4 less[3] = {}, equal[3] = {};
     for (int b = 0; b < 12; ++b) {
         const F4 xb = {pad[b], pad[b], pad[b], pad[b]};
-        const I4 bb = {b, b, b, b};
         for (int j = 0; j < 3; ++j) {
-            const I4 eq = xb == a[j];
             less[j] -= xb < a[j];
-            equal[j] -= eq;
-            before[j] -= eq & (bb < idx[j]);
+            equal[j] -= xb == a[j];
         }
     }
     const int32_t ri = static_cast<int32_t>(r);
     const I4 r4 = {ri, ri, ri, ri};
-    I4 pick = {};
-    for (int j = 0; j < 3; ++j)
-        pick |= (I4)a[j] & ((less[j] <= r4) & (r4 < less[j] + equal[j]) & (before[j] == I4{}));
-    return std::bit_cast<float>(pick[0] | pick[1] | pick[2] | pick[3]);
+    unsigned lanes = 0;  // bit a: x[a] is of rank r
+    for (int j = 0; j < 3; ++j) lanes |= lane_bits((less[j] <= r4) & (r4 < less[j] + equal[j])) << (4 * j);
+    return lanes != 0 ? pad[__builtin_ctz(lanes)] : 0.0f;  // never 0 lanes (r < m): kept as a guard
 }
 
 // The value of rank k (from 0) among the `finite` values of v[0, n) that are not NaN (NaN
@@ -190,65 +184,6 @@ void window_extreme(Value in, int nx, int ny, int h, std::vector<float>& tmp, st
     }
 }
 
-// The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
-// of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, four cells
-// at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and to
-// whole vectors. Each sum starts at +0 and adds the taps in the order of d, as a plain loop
-// would (a padded tap adds +-0, which changes no sum: none is ever -0).
-void slope_row_sums(const float* __restrict lw, const float* __restrict lz, const float* __restrict lo, int hp,
-                    std::size_t w4, float* __restrict rw, float* __restrict rwq, float* __restrict rwqq,
-                    float* __restrict rwz, float* __restrict rwzq, float* __restrict ro)
-{
-    for (std::size_t j = 0; j < w4; j += 4) {
-        F4 sw{}, swq{}, swqq{}, swz{}, swzq{}, so{};
-        for (int t = 0; t <= 2 * hp; ++t) {
-            const float fd = static_cast<float>(t - hp);
-            const F4 wv = load4(lw + j + t), zv = load4(lz + j + t) * wv;
-            sw += wv;
-            swq += fd * wv;
-            swqq += fd * fd * wv;
-            swz += zv;
-            swzq += fd * zv;
-            so += load4(lo + j + t);
-        }
-        store4(rw + j, sw);
-        store4(rwq + j, swq);
-        store4(rwqq + j, swqq);
-        store4(rwz + j, swz);
-        store4(rwzq + j, swzq);
-        store4(ro + j, so);
-    }
-}
-
-// The slope's column pass for one row of windows (the cells [j_from, j_to), whole vectors):
-// the row sums of the window's rows (rows[r]
-// points at row r's six sums, kRowSums apart by w4; fd[r] its offset), added in order of the
-// rows into the plane's ten moments, four cells at a time in registers.
-void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t w4, std::size_t j_from,
-                       std::size_t j_to, float* __restrict m)
-{
-    for (std::size_t j = j_from; j < j_to; j += 4) {
-        F4 s0{}, sp{}, spp{}, sq{}, sqq{}, spq{}, sz{}, szp{}, szq{}, so{};
-        for (int r = 0; r < nrows; ++r) {
-            const float* row = rows[r];
-            const float fd = fds[r];
-            const F4 rw = load4(row + j), rwq = load4(row + w4 + j), rwz = load4(row + 3 * w4 + j);
-            s0 += rw;
-            sp += fd * rw;
-            spp += fd * fd * rw;
-            sq += rwq;
-            sqq += load4(row + 2 * w4 + j);
-            spq += fd * rwq;
-            sz += rwz;
-            szp += fd * rwz;
-            szq += load4(row + 4 * w4 + j);
-            so += load4(row + 5 * w4 + j);
-        }
-        const F4 all[10] = {s0, sp, spp, sq, sqq, spq, sz, szp, szq, so};
-        for (int e = 0; e < 10; ++e) store4(m + static_cast<std::size_t>(e) * w4 + j, all[e]);
-    }
-}
-
 }  // namespace
 
 void TraversabilityLayers::reset(int nx_, int ny_)
@@ -317,8 +252,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
     known_f_.resize(n);
-    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + 4);  // + 4: a window row's last vector
-    std::fill(parity_means_.end() - 4, parity_means_.end(), kNaN);
+    // + kWindowLanes: a window row's last vector.
+    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + kernels::kWindowLanes);
+    std::fill(parity_means_.end() - kernels::kWindowLanes, parity_means_.end(), kNaN);
     for (std::size_t k = 0; k < n; ++k) known_f_[k] = known_[k] ? 1.0f : 0.0f;
     for (int i = 0; i < nx; ++i) {
         float* even = &parity_means_[static_cast<std::size_t>(i) * half];
@@ -329,18 +265,18 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         for (std::size_t e = 0; e < w / 2; ++e) odd[e] = kr[2 * e + 1] ? mr[2 * e + 1] : kNaN;
         if (w & 1) odd[w / 2] = kNaN;
     }
-    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors of 4.
-    const std::size_t row_vectors = (static_cast<std::size_t>(h) + 4) / 4;
-    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * row_vectors * 4;
+    // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors.
+    constexpr std::size_t kL = kernels::kWindowLanes;
+    const std::size_t max_rs = (static_cast<std::size_t>(h) + kL) / kL * kL;
+    const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * max_rs;
     win_v_.resize(max_points);
     win_lev_.resize(max_points);
-    win_flags_.resize(max_points / 4);
+    win_flags_.resize(max_points / kL);
     win_sel_.resize(max_points);
-    win_q_.resize(4 * row_vectors);
-    lane_known_.resize(4 * row_vectors);
-    lane_q_.resize(2 * row_vectors);
-    lane_z_.resize(2 * row_vectors);
-    lane_pz_.resize(2 * row_vectors);
+    win_q_.resize(max_rs);
+    lane_known_.resize(max_rs);
+    lane_z_.resize(max_rs);
+    lane_pz_.resize(max_rs);
     column_sums_.resize(3 * w);
     float *c1 = &column_sums_[0], *cp = &column_sums_[w], *cpp = &column_sums_[2 * w];
     const double band = static_cast<float>(0.5 * max_step_m);
@@ -353,12 +289,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         std::fill(column_sums_.begin(), column_sums_.end(), 0.0f);
         for (int p = plo; p <= phi; p += 2) {
             const float dp = static_cast<float>(p - i);
-            const float* __restrict kr = &known_f_[p * w];
-            for (std::size_t q = 0; q < w; ++q) {
-                c1[q] += kr[q];
-                cp[q] += dp * kr[q];
-                cpp[q] += dp * dp * kr[q];
-            }
+            kernels::add_row_moments(w, &known_f_[p * w], dp, c1, cp, cpp);
         }
         for (int b = 0; b < ly; ++b) {
             if (!need[b]) continue;
@@ -376,56 +307,30 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             if (m.s0 < 3) continue;
             const float zc = g.mean_z_m[static_cast<std::size_t>(i) * w + j];
             const float zref = std::isnan(zc) ? 0.0f : zc;
-            // The window's points relative to zref: nr rows of nv vectors of 4 (the row's nq
-            // points, then NaN; NaN also where unknown). count of them are known (the
-            // geometry's s0).
-            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1, nv = (nq + 3) / 4;
+            // The window's points relative to zref: nr rows of rs lanes (the row's nq points,
+            // then NaN; NaN also where unknown). count of them are known (the geometry's s0).
+            const int nr = (phi - plo) / 2 + 1, nq = (qhi - qlo) / 2 + 1;
+            const std::size_t rs = (static_cast<std::size_t>(nq) + kL - 1) / kL * kL;
             const std::size_t count = static_cast<std::size_t>(m.s0);
             float* __restrict v = win_v_.data();
             float* __restrict lev = win_lev_.data();
             float* __restrict fq = win_q_.data();
-            for (int t = 0; t < 4 * nv; ++t) {
-                fq[t] = t < nq ? static_cast<float>(qlo + 2 * t - j) : 0.0f;
-                lane_known_[static_cast<std::size_t>(t)] = t < nq ? -1 : 0;
+            for (std::size_t t = 0; t < rs; ++t) {
+                const bool column = t < static_cast<std::size_t>(nq);
+                fq[t] = column ? static_cast<float>(qlo + 2 * static_cast<int>(t) - j) : 0.0f;
+                lane_known_[t] = column ? -1 : 0;
             }
-            // The points, and their heights' moments per lane of the window's columns, then
-            // across them. The sums are exact (floats times small integers, in double), so
-            // their order does not matter; an unknown point adds +0 to a sum that started at
-            // +0. Also the largest |height|, for the float outlier test's error bound.
-            const F4 zr = {zref, zref, zref, zref};
-            D2* __restrict az = lane_z_.data();
-            D2* __restrict apz = lane_pz_.data();
-            D2* __restrict dq = lane_q_.data();
-            for (int c = 0; c < nv; ++c) {
-                const F4 q = load4(fq + 4 * c);
-                dq[2 * c] = low2(q);
-                dq[2 * c + 1] = high2(q);
-                az[2 * c] = az[2 * c + 1] = apz[2 * c] = apz[2 * c + 1] = D2{0.0, 0.0};
-            }
-            F4 largest = {0, 0, 0, 0};
-            for (int r = 0; r < nr; ++r) {
-                const float* row = &parity_means_[((qlo & 1) * nx + plo + 2 * r) * half + qlo / 2];
-                const double p = plo + 2 * r - i;
-                const D2 fp = {p, p};
-                for (int c = 0; c < nv; ++c) {
-                    const I4 in = load4(&lane_known_[4 * static_cast<std::size_t>(c)]);
-                    const F4 x0 = load4(row + 4 * c) - zr;
-                    const F4 x = (F4)(((I4)x0 & in) | ((I4)nan4() & ~in));
-                    store4(v + (static_cast<std::size_t>(r) * nv + c) * 4, x);
-                    const F4 xz = (F4)((I4)x & (x == x));
-                    largest = abs4(xz) > largest ? abs4(xz) : largest;
-                    const D2 lo = low2(xz), hi = high2(xz);
-                    az[2 * c] += lo;
-                    az[2 * c + 1] += hi;
-                    apz[2 * c] += fp * lo;
-                    apz[2 * c + 1] += fp * hi;
-                }
-            }
-            for (int e = 0; e < 2 * nv; ++e) {
-                const D2 qz = dq[e] * az[e];
-                m.sz += az[e][0] + az[e][1];
-                m.spz += apz[e][0] + apz[e][1];
-                m.sqz += qz[0] + qz[1];
+            // The points, and their heights' moments per lane of the window's columns
+            // (classifier_kernels), then across them. The sums are exact (floats times small
+            // integers, in double), so their order does not matter. Also the largest
+            // |height|, for the float outlier test's error bound.
+            const float* first_row = &parity_means_[((qlo & 1) * nx + plo) * half + qlo / 2];
+            const float largest = kernels::window_points(first_row, 2 * half, nr, plo - i, rs, lane_known_.data(), zref,
+                                                         v, lane_z_.data(), lane_pz_.data());
+            for (std::size_t t = 0; t < rs; ++t) {
+                m.sz += lane_z_[t];
+                m.spz += lane_pz_[t];
+                m.sqz += static_cast<double>(fq[t]) * lane_z_[t];
             }
             const PlaneFit first = plane_from_moments(m, nullptr);
             // The second plane: without the points more than band off the first (unknown ones
@@ -434,42 +339,24 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
             // plane is the first): the float distance is within tol of the double one the
             // reference compares (a few roundings of values below `bound`), so only a point
             // within tol of the band needs the reference's double test.
-            const float bound = std::max({largest[0], largest[1], largest[2], largest[3]}) + std::abs(first.a) +
+            const float bound = largest + std::abs(first.a) +
                                 static_cast<float>(h) * (std::abs(first.gp) + std::abs(first.gq)) +
                                 static_cast<float>(band);
             const float tol = bound * 0x1p-18f;
-            const F4 bandf = {static_cast<float>(band), static_cast<float>(band), static_cast<float>(band),
-                              static_cast<float>(band)};
-            const F4 tol4 = {tol, tol, tol, tol}, fa4 = {first.a, first.a, first.a, first.a};
-            const F4 gq4 = {first.gq, first.gq, first.gq, first.gq};
-            const float level = first.a + zref;
-            const F4 level4 = {level, level, level, level};
-            I4 below = {0, 0, 0, 0};
-            unsigned any_flag = 0;
-            uint8_t* __restrict flags = win_flags_.data();  // per vector: the lanes off or near the band
-            for (int r = 0; r < nr; ++r) {
-                const float fp = static_cast<float>(plo + 2 * r - i), gp = first.gp * fp;
-                const F4 gp4 = {gp, gp, gp, gp};
-                for (int c = 0; c < nv; ++c) {
-                    const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
-                    const F4 x = load4(v + at), gqq = gq4 * load4(fq + 4 * c);
-                    const F4 d = abs4(x - ((fa4 + gp4) + gqq));
-                    const unsigned flag = lane_bits((d > bandf) | (abs4(d - bandf) <= tol4));
-                    flags[at / 4] = static_cast<uint8_t>(flag);
-                    any_flag |= flag;
-                    const F4 l = x + (zr - (gp4 + gqq));
-                    store4(lev + at, l);
-                    below -= l < level4;
-                }
-            }
+            uint8_t* __restrict flags = win_flags_.data();  // per kL points: those off or near the band
+            std::size_t below_level = 0;
+            const unsigned any_flag = kernels::level_window(
+                v, nr, plo - i, rs, fq,
+                {first.a, first.gp, first.gq, zref, first.a + zref, static_cast<float>(band), tol}, lev, flags,
+                below_level);
             bool subtracted = false;
             if (any_flag) {  // the flagged points tested as the reference, in its order
                 const double fa = first.a, fgp = first.gp, fgq = first.gq;
-                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv); ++vec)
+                for (std::size_t vec = 0; vec < static_cast<std::size_t>(nr) * rs / kL; ++vec)
                     for (unsigned lanes = flags[vec]; lanes != 0; lanes &= lanes - 1) {
-                        const std::size_t at = vec * 4 + static_cast<std::size_t>(__builtin_ctz(lanes));
-                        const int r = static_cast<int>(vec / static_cast<std::size_t>(nv));
-                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % (4 * static_cast<std::size_t>(nv))];
+                        const std::size_t at = vec * kL + static_cast<std::size_t>(__builtin_ctz(lanes));
+                        const int r = static_cast<int>(at / rs);
+                        const double p = static_cast<float>(plo + 2 * r - i), q = fq[at % rs];
                         const double x = v[at];
                         if (!(std::abs(x - (fa + fgp * p + fgq * q)) > band)) continue;
                         subtracted = true;
@@ -485,28 +372,14 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
                     }
             }
             PlaneFit fit = first;
-            std::size_t below_level = static_cast<std::size_t>(below[0] + below[1] + below[2] + below[3]);
             if (subtracted) {
                 // Levelled again along the second plane (each point less its slope; unknown
-                // points stay NaN), counted again below its level.
+                // points stay NaN), counted again below its level (the flags are not used).
                 fit = plane_from_moments(m, &first);
-                const F4 fgq4 = {fit.gq, fit.gq, fit.gq, fit.gq};
-                const float fit_level = fit.a + zref;
-                const F4 fit_level4 = {fit_level, fit_level, fit_level, fit_level};
-                I4 fit_below = {0, 0, 0, 0};
-                for (int r = 0; r < nr; ++r) {
-                    const float gp = fit.gp * static_cast<float>(plo + 2 * r - i);
-                    const F4 gp4 = {gp, gp, gp, gp};
-                    for (int c = 0; c < nv; ++c) {
-                        const std::size_t at = (static_cast<std::size_t>(r) * nv + c) * 4;
-                        const F4 l = load4(v + at) + (zr - (gp4 + fgq4 * load4(fq + 4 * c)));
-                        store4(lev + at, l);
-                        fit_below -= l < fit_level4;
-                    }
-                }
-                below_level = static_cast<std::size_t>(fit_below[0] + fit_below[1] + fit_below[2] + fit_below[3]);
+                kernels::level_window(v, nr, plo - i, rs, fq, {fit.a, fit.gp, fit.gq, zref, fit.a + zref, 0.0f, 0.0f},
+                                      lev, flags, below_level);
             }
-            const std::size_t points = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nv) * 4;
+            const std::size_t points = static_cast<std::size_t>(nr) * rs;
             lattice_[static_cast<std::size_t>(a) * ly + b] = select_rank(lev, points, count, ground_rank(count),
                                                                          fit.a + zref, below_level, 0.01f, win_sel_.data());
             lattice_slope_[static_cast<std::size_t>(a) * ly + b] = {fit.gp, fit.gq};
@@ -525,28 +398,25 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     bottom_.resize(n);
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
-    const bool have_age = g.age_s.size() == n;
-    float memo_age = kNaN;  // cells fused from one cloud share an age, so their certainty
-    double memo_certainty = 1.0;
-    measured_.assign(n, 0);  // measured and not decayed
-    for (std::size_t k = 0; k < n; ++k) {
-        if (g.count[k] <= 0 || !std::isfinite(g.mean_z_m[k])) continue;
-        // Only other cells' spread shares (section 3.5), no sample measured in the cell: the
-        // terrain map then shows max = min = mean. Nothing was seen there.
-        if (g.count[k] >= 2 && g.max_z_m[k] == g.min_z_m[k] && g.max_z_m[k] == g.mean_z_m[k]) continue;
-        double certainty = 1.0;
-        if (have_age && std::isfinite(g.age_s[k])) {
-            const float age = g.age_s[k];
-            if (age != memo_age) {
-                memo_age = age;
-                memo_certainty = std::max(0.0, 1.0 - age / c.max_age_s) *
-                                 std::max(0.0, 1.0 - odometer.driven_since(age) / c.max_driven_m);
-            }
-            certainty = memo_certainty;
-        }
-        out.certainty[k] = static_cast<float>(certainty);
-        measured_[k] = certainty > 0.0 ? 1 : 0;  // else decayed: UNKNOWN
-    }
+    struct AgeContext
+    {
+        const ClassifierConfig* config;
+        const Odometer* odometer;
+    } const age_context{&c, &odometer};
+    const kernels::CertaintyOf certainty_of{[](const void* context, float age) {
+                                                const auto& x = *static_cast<const AgeContext*>(context);
+                                                return std::max(0.0, 1.0 - age / x.config->max_age_s) *
+                                                       std::max(0.0, 1.0 - x.odometer->driven_since(age) /
+                                                                              x.config->max_driven_m);
+                                            },
+                                            &age_context};
+    // Measured and not decayed (a certainty of 0: UNKNOWN). Only other cells' spread shares
+    // (section 3.5), no sample measured in the cell: the terrain map then shows max = min =
+    // mean, and nothing was seen there.
+    measured_.resize(n);
+    kernels::certainties(n, g.count.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
+                         g.age_s.size() == n ? g.age_s.data() : nullptr, certainty_of, out.certainty.data(),
+                         measured_.data());
     // The highest sample of a cell when enough samples stand near it, else the mean: one
     // stray return does not make a cell tall. Samples near the extreme, estimated from the
     // (weighted) variance: a fraction p of the samples at distance d from the mean gives a
@@ -565,17 +435,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<false>([=](std::size_t k) { return std::isnan(top[k]) ? -kInf : mean[k]; }, nx, ny, hs,
                               window_, highest_);
     }
-    // Without a branch, so that it vectorises: NaN where unknown, as reset left it (a known
-    // cell has a top and a bottom, and the windows around it are finite).
-    {
-        const float *top = top_.data(), *bottom = bottom_.data(), *lowest = lowest_.data(), *highest = highest_.data();
-        float *__restrict step = out.step_m.data(), *__restrict drop = out.drop_m.data();
-        for (std::size_t k = 0; k < n; ++k) {
-            const float up = top[k] - lowest[k], down = highest[k] - bottom[k];  // std::max(0, x)
-            step[k] = top[k] == top[k] ? (0.0f < up ? up : 0.0f) : kNaN;
-            drop[k] = top[k] == top[k] ? (0.0f < down ? down : 0.0f) : kNaN;
-        }
-    }
+    // NaN where unknown (a known cell has a top and a bottom, and the windows around it are
+    // finite).
+    kernels::steps_and_drops(n, top_.data(), bottom_.data(), lowest_.data(), highest_.data(), out.step_m.data(),
+                             out.drop_m.data());
 
     // 3. Height classes. A cell is an obstacle when its top stands max_step above the local
     // ground, a negative obstacle when its bottom lies max_drop below it. The local ground
@@ -595,20 +458,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     levels_.nx = nx;
     levels_.ny = ny;
     levels_.mean_z_m.resize(n);
-    {
-        // Without a branch, so that it vectorises; unknown cells keep their mean.
-        const float *top = top_.data(), *bottom = bottom_.data(), *mean = g.mean_z_m.data();
-        const float *highest = g.max_z_m.data(), *lowest = g.min_z_m.data();
-        uint8_t* __restrict known = known_.data();
-        float* __restrict level = levels_.mean_z_m.data();
-        for (std::size_t k = 0; k < n; ++k) {
-            const float m = mean[k];
-            const bool raised = (highest[k] == m) & (lowest[k] < m), lowered = (lowest[k] == m) & (highest[k] > m);
-            const float own = raised ? bottom[k] : (lowered ? top[k] : m);
-            known[k] = top[k] == top[k] ? 1 : 0;
-            level[k] = top[k] == top[k] ? own : m;
-        }
-    }
+    // Unknown cells keep their mean.
+    kernels::cell_levels(n, top_.data(), bottom_.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
+                         known_.data(), levels_.mean_z_m.data());
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
     {
@@ -617,33 +469,23 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         window_extreme<true>([=](std::size_t k) { return known[k] ? level[k] : kInf; }, nx, ny, hs, window_,
                              lowest_level_);
     }
-    // Without a branch (an unknown cell or ground compares false), the limits as the least
-    // floats at or above them (the same verdicts as the comparisons in double).
-    const std::vector<float>& ground_ = out.ground_m;
-    const float max_step_f = float_at_least(c.max_step_m), max_drop_f = float_at_least(c.max_drop_m);
-    edge_.resize(n);
-    {
-        const float *top = top_.data(), *bottom = bottom_.data(), *ground = ground_.data();
-        uint8_t* __restrict edge = edge_.data();
-        for (std::size_t k = 0; k < n; ++k)
-            edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step_f ? kHigh : 0) |
-                                           (ground[k] - bottom[k] >= max_drop_f ? kLow : 0));
-    }
+    // The height flags without a branch (an unknown cell or ground compares false), the
+    // limits as the least floats at or above them (the same verdicts as the comparisons in
+    // double).
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
     // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
     // already a negative obstacle. The means must step too (the cell's mean over the lowest
     // level around): the spread of passes seen with different pose errors moves a cell's
     // extremes, not its mean.
-    // The candidates flagged first, without a branch (step is NaN where unknown and compares
-    // false; the limits as floats, the same verdicts), then visited by memchr: they are few.
+    // The candidates flagged in the same pass (step is NaN where unknown and compares false),
+    // then visited by memchr: they are few.
+    edge_.resize(n);
     face_.resize(n);
-    {
-        const float face_step_f = float_at_least(c.face_mean_step_m);
-        const float *step = out.step_m.data(), *mean = g.mean_z_m.data(), *lowest_level = lowest_level_.data();
-        uint8_t* __restrict face = face_.data();
-        for (std::size_t k = 0; k < n; ++k)
-            face[k] = (step[k] >= max_step_f) & !(mean[k] - lowest_level[k] < face_step_f) ? 1 : 0;
-    }
+    kernels::height_flags(n, top_.data(), bottom_.data(), out.ground_m.data(), out.step_m.data(), g.mean_z_m.data(),
+                          lowest_level_.data(),
+                          {float_at_least(c.max_step_m), float_at_least(c.max_drop_m),
+                           float_at_least(c.face_mean_step_m), kHigh, kLow},
+                          edge_.data(), face_.data());
     for (const uint8_t *f = face_.data(), *end = face_.data() + n;
          (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
         const std::size_t k = static_cast<std::size_t>(f - face_.data());
@@ -662,21 +504,31 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                 if ((p != i || q != j) && (edge_[static_cast<std::size_t>(p) * ny + q] & bit)) return true;
         return false;
     };
-    for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * ny + j;
-            const bool known = !std::isnan(top_[k]);
-            out.cell_class[k] = known ? CellClass::traversable : CellClass::unknown;
-            if (!(edge_[k] & (kHigh | kLow))) continue;  // rare (only known cells have them)
-            CellClass cls = CellClass::traversable;
-            const bool few = g.count[k] < c.min_support_samples;
-            if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
-                cls = CellClass::obstacle;
-            else if ((edge_[k] & kLow) && !(few && !neighbour_has(i, j, kLow)))
-                cls = CellClass::negative_obstacle;
-            out.cell_class[k] = cls;
-        }
+    auto height_class = [&](std::size_t k) {
+        if (!(edge_[k] & (kHigh | kLow))) return;  // only known cells have them
+        const int i = static_cast<int>(k / static_cast<std::size_t>(ny));
+        const int j = static_cast<int>(k % static_cast<std::size_t>(ny));
+        CellClass cls = CellClass::traversable;
+        const bool few = g.count[k] < c.min_support_samples;
+        if ((edge_[k] & kHigh) && !(few && !neighbour_has(i, j, kHigh)))
+            cls = CellClass::obstacle;
+        else if ((edge_[k] & kLow) && !(few && !neighbour_has(i, j, kLow)))
+            cls = CellClass::negative_obstacle;
+        out.cell_class[k] = cls;
+    };
+    // Known cells traversable, the others unknown: known_ is 1 or 0, the classes' values.
+    static_assert(static_cast<uint8_t>(CellClass::traversable) == 1 && static_cast<uint8_t>(CellClass::unknown) == 0);
+    std::memcpy(out.cell_class.data(), known_.data(), n);
+    // Then the few cells with a height flag, found eight flags at a time (edge_ holds only
+    // kHigh and kLow so far).
+    std::size_t k0 = 0;
+    for (; k0 + 8 <= n; k0 += 8) {
+        uint64_t eight;
+        std::memcpy(&eight, &edge_[k0], sizeof eight);
+        if (eight != 0)
+            for (std::size_t k = k0; k < k0 + 8; ++k) height_class(k);
     }
+    for (; k0 < n; ++k0) height_class(k0);
 
     // 4. Slope: the plane fitted to the means of the cells within slope_radius that are not
     // step obstacles (a box would tilt the ground beside it). Separable: along each row,
@@ -686,17 +538,18 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // slope_reference() is the same fit written window by window.
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
-    const std::size_t w = static_cast<std::size_t>(ny), w4 = (w + 3) / 4 * 4, hw = static_cast<std::size_t>(hp);
+    constexpr std::size_t kL = kernels::kSlopeLanes;
+    const std::size_t w = static_cast<std::size_t>(ny), wv = (w + kL - 1) / kL * kL, hw = static_cast<std::size_t>(hp);
     // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
     // each computed as the column pass first needs it; rows at a stride of whole vectors.
     const int span = 2 * hp + 1;
-    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * w4);
-    auto rows = [&](int p) { return &row_sums_[static_cast<std::size_t>(p % span) * kRowSums * w4]; };
+    row_sums_.resize(static_cast<std::size_t>(span) * kRowSums * wv);
+    auto rows = [&](int p) { return &row_sums_[static_cast<std::size_t>(p % span) * kRowSums * wv]; };
     const float z0 = static_cast<float>(g.position_m.z());
     // A row's weights, heights and obstacle flags, padded with hp zeros on each side.
-    line_w_.assign(w4 + 2 * hw, 0.0f);
-    line_z_.assign(w4 + 2 * hw, 0.0f);
-    line_o_.assign(w4 + 2 * hw, 0.0f);
+    line_w_.assign(wv + 2 * hw, 0.0f);
+    line_z_.assign(wv + 2 * hw, 0.0f);
+    line_o_.assign(wv + 2 * hw, 0.0f);
     // Rows without a known cell have row sums of +0, which add nothing: they are skipped.
     row_known_.resize(static_cast<std::size_t>(nx));
     for (int i = 0; i < nx; ++i) {
@@ -706,22 +559,17 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     auto row_pass = [&](int i) {
         if (!row_known_[static_cast<std::size_t>(i)]) return;
         float *lw = line_w_.data() + hw, *lz = line_z_.data() + hw, *lo = line_o_.data() + hw;
-        for (int j = 0; j < ny; ++j) {
-            const std::size_t k = static_cast<std::size_t>(i) * w + j;
-            const bool known = !std::isnan(top_[k]), counts = known && out.cell_class[k] == CellClass::traversable;
-            lw[j] = counts ? 1.0f : 0.0f;
-            lz[j] = counts ? g.mean_z_m[k] - z0 : 0.0f;
-            lo[j] = known && !counts ? 1.0f : 0.0f;
-        }
+        const std::size_t k = static_cast<std::size_t>(i) * w;
+        kernels::slope_row_inputs(w, &known_[k], &out.cell_class[k], &g.mean_z_m[k], z0, lw, lz, lo);
         float* r = rows(i);
-        slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, w4, r + W * w4, r + WQ * w4, r + WQQ * w4,
-                       r + WZ * w4, r + WZQ * w4, r + OBST * w4);
+        kernels::slope_row_sums(line_w_.data(), line_z_.data(), line_o_.data(), hp, wv, r + W * wv, r + WQ * wv,
+                                r + WQQ * wv, r + WZ * wv, r + WZQ * wv, r + OBST * wv);
     };
     int rows_done = 0;
     const double min_cells = 0.5 * (2 * hp + 1) * (2 * hp + 1);
     slope_rows_.resize(static_cast<std::size_t>(span));
     slope_fd_.resize(static_cast<std::size_t>(span));
-    moments_.resize(w4 * 10);
+    moments_.resize(wv * 10);
     for (int i = 0; i < nx; ++i) {
         for (; rows_done <= std::min(nx - 1, i + hp); ++rows_done) row_pass(rows_done);
         // The window's moments about its centre cell, for each cell of row i.
@@ -738,14 +586,15 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         if (jlo == ny) continue;
         int jhi = ny;
         while (!kr[jhi - 1]) --jhi;  // stops at jlo's at the latest
-        slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, w4, static_cast<std::size_t>(jlo) / 4 * 4,
-                          (static_cast<std::size_t>(jhi) + 3) / 4 * 4, moments_.data());
-        const float* so = &moments_[9 * w4];
+        kernels::slope_column_sums(slope_rows_.data(), slope_fd_.data(), nrows, wv,
+                                   static_cast<std::size_t>(jlo) / kL * kL,
+                                   (static_cast<std::size_t>(jhi) + kL - 1) / kL * kL, moments_.data());
+        const float* so = &moments_[9 * wv];
         // The plane's gradient (cells as units) from the centred moments, and the tangent of
         // its steepest angle (classifier_kernels); the arc tangent follows.
         tangent_.resize(w);
         const float* tangent = tangent_.data();
-        kernels::slope_tangents(moments_.data(), w4, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
+        kernels::slope_tangents(moments_.data(), wv, jlo, jhi, min_cells, g.resolution_m, tangent_.data());
         for (int j = jlo; j < jhi; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * w + j;
             if (std::isnan(top_[k])) continue;
@@ -756,20 +605,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
 
     // 5. Too steep is an obstacle (where no step obstacle spoils the plane); the rest costs
     // the largest of its step, drop, roughness and slope against their limits.
-    for (std::size_t k = 0; k < n; ++k) {
-        if (std::isnan(top_[k])) continue;
-        CellClass& cls = out.cell_class[k];
-        if (cls == CellClass::traversable && !(edge_[k] & kObstacleNear) && out.slope_deg[k] > c.max_slope_deg)
-            cls = CellClass::obstacle;
-        if (cls != CellClass::traversable) {
-            out.cost[k] = 1.0f;
-            continue;
-        }
-        double cost = std::max(out.step_m[k] / c.max_step_m, out.drop_m[k] / c.max_drop_m);
-        cost = std::max(cost, out.roughness_m[k] / c.max_roughness_m);
-        if (std::isfinite(out.slope_deg[k])) cost = std::max(cost, out.slope_deg[k] / c.max_slope_deg);
-        out.cost[k] = static_cast<float>(std::min(1.0, cost));
-    }
+    kernels::slope_class_and_cost(n, out.step_m.data(), out.drop_m.data(), out.roughness_m.data(), out.slope_deg.data(),
+                                  edge_.data(), kObstacleNear,
+                                  {c.max_step_m, c.max_drop_m, c.max_roughness_m, c.max_slope_deg},
+                                  out.cell_class.data(), out.cost.data());
 }
 
 }  // namespace ugv::traverse

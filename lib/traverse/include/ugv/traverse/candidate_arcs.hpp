@@ -79,7 +79,6 @@ private:
     // in the same loop (with 32 bits, a store to seen_ at the same offset modulo 4 KiB as the
     // next load from the cost layer made the judge 1.5 times slower, for the same instructions).
     mutable std::vector<uint16_t> seen_;
-    mutable std::vector<int32_t> cell_of_;        // per swept fine cell: its map cell
     mutable uint16_t stamp_ = 0;
 };
 

@@ -70,18 +70,16 @@ private:
     std::vector<float> window_;
     TerrainGrid levels_;  // the heights the local ground is taken over (cell_level), in mean_z_m
     // The local ground's: known flags (float), a lattice row's column sums, the means split
-    // by column parity, a window's points (rows padded to vectors of 4, NaN where unknown)
+    // by column parity, a window's points (rows padded to vectors of 8, NaN where unknown)
     // and the same levelled, its columns' offsets and which lanes hold a column, the values
     // gathered for the percentile's last step; per lattice square, whether it holds a known
-    // cell; per lattice point, whether a known cell reads it; per vector of a window, the
-    // lanes to test again in double; per lane (two doubles): the columns' offsets and the
-    // heights' sums.
+    // cell; per lattice point, whether a known cell reads it; per 8 points of a window, the
+    // ones to test again in double; per lane of a window's rows: the heights' sums.
     std::vector<float> known_f_, column_sums_;
     std::vector<float> parity_means_, win_v_, win_lev_, win_q_, win_sel_;
     std::vector<uint8_t> square_known_, needed_, win_flags_;
     std::vector<int32_t> lane_known_;
-    using Lanes = double __attribute__((vector_size(16)));
-    std::vector<Lanes> lane_q_, lane_z_, lane_pz_;
+    std::vector<double> lane_z_, lane_pz_;
 };
 
 }  // namespace ugv::traverse
