@@ -252,9 +252,9 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // Known cells as 1; the means split by column parity (NaN where unknown) so that a
     // window's every other column is contiguous.
     known_f_.resize(n);
-    // + kWindowLanes: a window row's last vector.
-    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + kernels::kWindowLanes);
-    std::fill(parity_means_.end() - kernels::kWindowLanes, parity_means_.end(), kNaN);
+    // + kPadLanes: a window row's last vector.
+    parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + kernels::kPadLanes);
+    std::fill(parity_means_.end() - kernels::kPadLanes, parity_means_.end(), kNaN);
     for (std::size_t k = 0; k < n; ++k) known_f_[k] = known_[k] ? 1.0f : 0.0f;
     for (int i = 0; i < nx; ++i) {
         float* even = &parity_means_[static_cast<std::size_t>(i) * half];
@@ -266,7 +266,7 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
         if (w & 1) odd[w / 2] = kNaN;
     }
     // A window's points: up to h + 1 rows of h + 1, each row padded to whole vectors.
-    constexpr std::size_t kL = kernels::kWindowLanes;
+    constexpr std::size_t kL = kernels::kPadLanes;
     const std::size_t max_rs = (static_cast<std::size_t>(h) + kL) / kL * kL;
     const std::size_t max_points = (static_cast<std::size_t>(h) + 1) * max_rs;
     win_v_.resize(max_points);
@@ -398,18 +398,9 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     bottom_.resize(n);
 
     // 1. What is known, how certain, and each known cell's supported top and bottom.
-    struct AgeContext
-    {
-        const ClassifierConfig* config;
-        const Odometer* odometer;
-    } const age_context{&c, &odometer};
-    const kernels::CertaintyOf certainty_of{[](const void* context, float age) {
-                                                const auto& x = *static_cast<const AgeContext*>(context);
-                                                return std::max(0.0, 1.0 - age / x.config->max_age_s) *
-                                                       std::max(0.0, 1.0 - x.odometer->driven_since(age) /
-                                                                              x.config->max_driven_m);
-                                            },
-                                            &age_context};
+    const kernels::CertaintyOf certainty_of = [&](float age) {
+        return std::max(0.0, 1.0 - age / c.max_age_s) * std::max(0.0, 1.0 - odometer.driven_since(age) / c.max_driven_m);
+    };
     // Measured and not decayed (a certainty of 0: UNKNOWN). Only other cells' spread shares
     // (section 3.5), no sample measured in the cell: the terrain map then shows max = min =
     // mean, and nothing was seen there.
@@ -538,7 +529,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // slope_reference() is the same fit written window by window.
     const int hp = half_width(c.slope_radius_m, g.resolution_m);
     enum { W, WQ, WQQ, WZ, WZQ, OBST, kRowSums };
-    constexpr std::size_t kL = kernels::kSlopeLanes;
+    constexpr std::size_t kL = kernels::kPadLanes;
     const std::size_t w = static_cast<std::size_t>(ny), wv = (w + kL - 1) / kL * kL, hw = static_cast<std::size_t>(hp);
     // Row sums for the 2 hp + 1 rows a window spans, in a ring (row p in slot p mod span),
     // each computed as the column pass first needs it; rows at a stride of whole vectors.

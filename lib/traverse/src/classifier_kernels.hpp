@@ -6,17 +6,16 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "ugv/traverse/cell_classifier.hpp"
 
 namespace ugv::traverse::kernels {
 
-// The slope's per-cell rows are padded to whole vectors of this many floats (the widest
-// version's), so that either version covers them without a remainder loop.
-constexpr std::size_t kSlopeLanes = 8;
-
-// A local ground window's rows of points are padded to whole vectors of this many floats.
-constexpr std::size_t kWindowLanes = 8;
+// The widest version's floats per vector: the slope's per-cell rows and a local ground
+// window's rows of points are padded to whole vectors of it, so that either version covers
+// them without a remainder loop.
+constexpr std::size_t kPadLanes = 8;
 
 // Whether the AVX2 versions run (the CPU has AVX2 and POPCNT, and allow_avx2 allows them).
 bool use_avx2();
@@ -37,13 +36,13 @@ void slope_row_inputs(std::size_t n, const uint8_t* known, const CellClass* cell
 // The slope's row pass for one row: over the 2 hp + 1 column offsets d, in order, the sums
 // of the weights w, w d, w d^2, the heights w z, w z d and the obstacle flags o, a vector
 // of cells at a time in registers. lw, lz, lo: the row padded with hp zeros on each side and
-// to wv (a multiple of kSlopeLanes). Each sum starts at +0 and adds the taps in the order of
+// to wv (a multiple of kPadLanes). Each sum starts at +0 and adds the taps in the order of
 // d, as a plain loop would (a padded tap adds +-0, which changes no sum: none is ever -0).
 void slope_row_sums(const float* lw, const float* lz, const float* lo, int hp, std::size_t wv, float* rw, float* rwq,
                     float* rwqq, float* rwz, float* rwzq, float* ro);
 
 // The slope's column pass for one row of windows (the cells [j_from, j_to), multiples of
-// kSlopeLanes): the row sums of the window's rows (rows[r] points at row r's six sums, wv
+// kPadLanes): the row sums of the window's rows (rows[r] points at row r's six sums, wv
 // apart; fds[r] its offset), added in order of the rows into the plane's ten moments (wv
 // apart in m), a vector of cells at a time in registers.
 void slope_column_sums(const float* const* rows, const float* fds, int nrows, std::size_t wv, std::size_t j_from,
@@ -74,16 +73,12 @@ void add_row_moments(std::size_t n, const float* known, float dp, float* c1, flo
 // is finite (age may be null: none), else 1, and measured := certainty > 0; the certainty
 // of a cell not seen is left as it is, measured := 0. of is called once per run of cells of
 // one age (cells fused from one cloud share it).
-struct CertaintyOf
-{
-    double (*certainty)(const void* context, float age);
-    const void* context;
-};
+using CertaintyOf = std::function<double(float age)>;
 void certainties(std::size_t n, const int32_t* count, const float* mean, const float* highest, const float* lowest,
                  const float* age, const CertaintyOf& of, float* certainty, uint8_t* measured);
 
 // A local ground window's points: nr rows, row r of them at first_row + r row_stride (its
-// row offset p0 + 2 r), rs lanes each (a multiple of kWindowLanes; lane_known[t] is -1 for
+// row offset p0 + 2 r), rs lanes each (a multiple of kPadLanes; lane_known[t] is -1 for
 // a lane that holds a column, else 0). v := the points less zref, rs apart, NaN where
 // unknown or past the row's columns; per lane t, sum_z[t] and sum_pz[t] := the sums over
 // the rows of the known heights and of the heights times p (in double). Returns the largest
@@ -93,7 +88,7 @@ float window_points(const float* first_row, std::size_t row_stride, int nr, int 
 
 // A window's points v (as window_points left them, fq[t] lane t's column offset) levelled
 // along the plane z = a + gp p + gq q: lev := v + (zref - (gp p + gq q)) (NaN stays NaN);
-// below := how many of lev are below level; per kWindowLanes points, flags (bit t for point
+// below := how many of lev are below level; per kPadLanes points, flags (bit t for point
 // t) := |v - (a + gp p + gq q)| is above band or within tol of it. Returns the flags' OR.
 struct WindowPlane
 {

@@ -39,12 +39,6 @@ inline Float4 splat(float v) { return Float4{v, v, v, v}; }
 
 inline Float4 nan4() { return splat(std::numeric_limits<float>::quiet_NaN()); }
 
-inline Float4 abs4(Float4 v) { return (Float4)((Int4)v & Int4{INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}); }
-
-// Lanes 0-1 (2-3) widened to double.
-inline Double2 low2(Float4 v) { return Double2{v[0], v[1]}; }
-inline Double2 high2(Float4 v) { return Double2{v[2], v[3]}; }
-
 // Bit k set where lane k of the mask is set (SSE: one movmskps).
 inline unsigned lane_bits(Int4 mask)
 {
