@@ -2,9 +2,9 @@
 # Bench: the attitude's error against the simulator's truth, of the IMU's own output (the
 # GX1's filter) and of ugv-pose, standing, straight and turning (docs/pose.md, "Attitude
 # under the simulator's error models").
-#   tests/bench/attitude-error.sh [SCENARIO.toml] [--imu ahrs|white] [--gps markov|white]
+#   tests/bench/attitude-error.sh [WORLD.toml] [--imu ahrs|white] [--gps markov|white]
 #                                 [--seed N] [--out DIR] [--seconds S] [--keep]
-# SCENARIO: an `ugv-sim world` scenario (default: the built-in one; e.g.
+# WORLD: an `ugv-sim world` scenario (default: the built-in one; e.g.
 # tools/sim/scenarios/s_curve.toml). --imu / --gps rewrite the scenario's [imu] / [gps]
 # error_model (white: the model's own keys dropped, angle_sigma_deg = 0.7 as before); absent,
 # the scenario's choice stands. Starts lcm-logger (SIM_TRUTH, IMU, GPS, POSE), ugv-sim world

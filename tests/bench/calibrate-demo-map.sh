@@ -90,7 +90,7 @@ scenario() {
         $0 == "[gps]" { print "antenna_m = " tant; print "configured_antenna_m = " cant }'
 }
 
-# drive NAME SCENARIO: the whole stack on the scenario to its end, in $top/NAME; then the scores
+# drive NAME WORLD: the whole stack on the scenario file WORLD to its end, in $top/NAME; then the scores
 # (one JSON line a map) in $top/NAME/maps.jsonl.
 drive() {
     local name=$1 dir=$top/$1 rc

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Bench: the whole stack on a simulated world, the traversability maps scored against the
 # world's truth (docs/traverse.md section 4).
-#   tests/bench/traverse-score.sh [SCENARIO.toml] [--out DIR] [--seconds S] [--keep]
-# SCENARIO: an `ugv-sim world` scenario (default: the built-in one; e.g.
+#   tests/bench/traverse-score.sh [WORLD.toml] [--out DIR] [--seconds S] [--keep]
+# WORLD: an `ugv-sim world` scenario (default: the built-in one; e.g.
 # tools/sim/scenarios/obstacle_course.toml). Starts lcm-logger (every channel), ugv-sim world
 # and every daemon of tools/lib/stack.sh's STACK_DAEMONS (ugv-traverse among them when it is
 # there), runs the whole scenario (or --seconds S), stops everything, then scores the log with
