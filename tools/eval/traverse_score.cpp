@@ -28,6 +28,9 @@ namespace {
 constexpr int kMaxCells = 4'000'000;  // as lib/traverse's check_grid
 // A sample within the laser's noise of the obstacle's threshold height counts as one of it.
 constexpr double kSampleTolerance = 1e-5;
+// How far a column may lie outside its cell's samples and still count as seen: the laser's
+// noise and the pose's error at range, with the rough ground's 2 cm between a cell's columns.
+constexpr double kSeenHeightTolerance = 0.05;
 
 bool finite_pose(const pose_t& p)
 {
@@ -279,7 +282,18 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
     std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
     std::vector<CellTruth> cells(t.size());
     const simworld::HeightField& f = truth.field();
-    const SeenGround seen_ground(truth, [&](int a, int b) { return map.known_at({f.cell_x(a), f.cell_y(b)}); });
+    // Seen ground: a column in a known cell, at a height the cell's samples reach. A cell known
+    // for a face's samples has not seen the ground at the face's foot, nor the floor beside it.
+    auto seen = [&](int a, int b) {
+        int i, j;
+        if (!map.cell_at({f.cell_x(a), f.cell_y(b)}, i, j) || map.cls(i, j) == traversability_map_t::CLASS_UNKNOWN)
+            return false;
+        if (terrain == nullptr) return true;
+        const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(j);
+        const double z = f.at(a, b);
+        return z >= terrain->min_z[k] - kSeenHeightTolerance && z <= terrain->max_z[k] + kSeenHeightTolerance;
+    };
+    const SeenGround seen_ground(truth, seen);
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = static_cast<std::size_t>(i * ny + j);

@@ -353,15 +353,17 @@ TEST_CASE("ugv-eval traverse: the sampled recall counts only obstacles whose hei
 // A 0.4 m ramp rising over x 4 .. 8 m for |y| < half_width_m, then a drop to the ground at 1.5 m
 // (also at its sides), scored as a map that knows every cell, sampled at its columns' extremes,
 // and calls all traversable, but the cells at x 8 .. 10 m behind the high edge (unknown when
-// `shadowed`). The truth's local ground of the top's last half metre takes in the ground behind
-// the edge. Returns the run and the sampled misses within 0.5 m of the ramp's centre line.
+// `shadowed`; with `top_strip`, the first row of them known, holding only samples of the top, as
+// the edge's returns spread by the pose's error). The truth's local ground of the top's last half
+// metre takes in the ground behind the edge. Returns the run and the sampled misses within 0.5 m of
+// the ramp's centre line.
 struct RampScore
 {
     Run run;
     int sampled_middle = 0;
 };
 
-RampScore score_ramp(double half_width_m, bool shadowed)
+RampScore score_ramp(double half_width_m, bool shadowed, bool top_strip = false)
 {
     test::TempDir dir;
     simworld::HeightField f(-6.0, -11.0, kRes, 440, 440, 1.5f);
@@ -384,7 +386,15 @@ RampScore score_ramp(double half_width_m, bool shadowed)
         }
     std::vector<int8_t> cls(kN * kN, traversability_map_t::CLASS_TRAVERSABLE);
     if (shadowed)
-        area(cls, 8.0, kOriginY, 10.0, kOriginY + kN * double(kCell), traversability_map_t::CLASS_UNKNOWN);
+        area(cls, top_strip ? 8.0 + double(kCell) : 8.0, kOriginY, 10.0, kOriginY + kN * double(kCell),
+             traversability_map_t::CLASS_UNKNOWN);
+    if (top_strip) {
+        const int row = static_cast<int>(std::lround((8.0 - kOriginX) / double(kCell)));
+        for (int j = 0; j < kN; ++j) {
+            const std::size_t k = static_cast<std::size_t>(row * kN + j);
+            if (std::abs(kOriginY + double(kCell) * (j + 0.5)) < half_width_m) t.min_z[k] = t.max_z[k] = 1.9f;
+        }
+    }
     const std::string log = dir / "t.lcm";
     {
         lcm::LogFile out(log, "w");
@@ -433,6 +443,12 @@ TEST_CASE("ugv-eval traverse: whether a seen column is ground is judged on what 
     const RampScore seen = score_ramp(1.2, false);
     INFO(seen.run.out);
     CHECK(seen.sampled_middle > 0);
+    // A known cell's ground is seen only where its samples reach it: the row behind the edge
+    // known for samples of the top alone has not seen the ground at the edge's foot.
+    const RampScore strip = score_ramp(1.2, true, true);
+    INFO(strip.run.out);
+    REQUIRE(strip.run.rc == 0);
+    CHECK(strip.sampled_middle == 0);
 }
 
 TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unrestricted")
