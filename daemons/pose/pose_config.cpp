@@ -98,6 +98,7 @@ PoseConfig read_config(runtime::Config& cfg)
     e.imu_orientation_sigma_rad = cfg.get_double("imu_orientation_sigma_deg", 2.0, 0.001, 90.0) * kDeg;
     e.imu_tilt_time_constant_s = cfg.get_double("imu_tilt_time_constant_s", 10.0, 0.0, 1000.0);
     e.imu_tilt_accel_factor = cfg.get_double("imu_tilt_accel_factor", 1.0, 0.0, 100.0);
+    e.imu_yaw_time_constant_s = cfg.get_double("imu_yaw_time_constant_s", 0.0, 0.0, 1000.0);
     e.gps_default_sigma_m = cfg.get_double("gps_default_sigma_m", 5.0, 0.001, 1000.0);
     e.gps_min_sigma_m = cfg.get_double("gps_min_sigma_m", 0.01, 0.0001, 100.0);
     e.gps_velocity_sigma_mps = cfg.get_double("gps_velocity_sigma_mps", 0.1, 0.001, 100.0);

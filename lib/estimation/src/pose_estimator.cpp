@@ -51,6 +51,8 @@ void EstimatorConfig::validate() const
             "imu_tilt_time_constant_s must be >= 0");
     require(std::isfinite(imu_tilt_accel_factor) && imu_tilt_accel_factor >= 0.0,
             "imu_tilt_accel_factor must be >= 0");
+    require(std::isfinite(imu_yaw_time_constant_s) && imu_yaw_time_constant_s >= 0.0,
+            "imu_yaw_time_constant_s must be >= 0");
     require(positive(initial_gyro_bias_sigma_rps), "initial_gyro_bias_sigma_rps must be > 0");
     require(positive(gps_default_sigma_m) && positive(gps_min_sigma_m), "GPS sigmas must be > 0");
     require(positive(gps_velocity_sigma_mps), "gps_velocity_sigma_mps must be > 0");
@@ -376,13 +378,15 @@ Matrix3d PoseEstimator::imu_orientation_covariance(const ImuSample& s)
     const double false_tilt = config_.imu_tilt_accel_factor * c_.accel_envelope / ErrorStateFilter::kGravity;
     double tilt_var = sigma * sigma + false_tilt * false_tilt;
     c_.imu_tilt_sigma = std::sqrt(tilt_var);
-    if (tau > 0.0) {
-        // Samples closer than the time constant are not independent evidence.
-        tilt_var *= std::max(1.0, tau / std::max(dt, 1e-3));
-    }
+    // Samples closer than the time constant are not independent evidence.
+    const auto correlated = [dt](double var, double time_constant_s) {
+        return time_constant_s > 0.0 ? var * std::max(1.0, time_constant_s / std::max(dt, 1e-3)) : var;
+    };
+    tilt_var = correlated(tilt_var, tau);
+    const double yaw_var = correlated(sigma * sigma, config_.imu_yaw_time_constant_s);
     // The residual is in the IMU's world frame (the true one turned by the heading offset about
     // Up): equal east and north variances make the turn irrelevant.
-    return Eigen::Vector3d(tilt_var, tilt_var, sigma * sigma).asDiagonal();
+    return Eigen::Vector3d(tilt_var, tilt_var, yaw_var).asDiagonal();
 }
 
 Matrix3d PoseEstimator::fix_covariance(const GpsFix& f) const

@@ -121,8 +121,9 @@ Run simulate(const Trajectory& trajectory, const Noise& noise, const Datum& datu
                 }
                 attitude = *ahrs;
             }
+            const double compass_error = noise.heading_offset_rad + noise.compass_deviation_rad * std::sin(tr.yaw);
             const Eigen::Quaterniond magnetic =
-                Eigen::Quaterniond(Eigen::AngleAxisd(noise.heading_offset_rad, Vector3d::UnitZ())) * attitude;
+                Eigen::Quaterniond(Eigen::AngleAxisd(compass_error, Vector3d::UnitZ())) * attitude;
             s.orientation = (geometry::quaternion_exp(gauss3(noise.imu_orientation_sigma_rad)) * magnetic).normalized();
             s.orientation_sigma_rad = noise.imu_orientation_sigma_rad;
             run.inputs.emplace_back(s);

@@ -45,6 +45,9 @@ struct Noise
     double gyro_density = 0.005;   // rad/s/sqrt(Hz)
     double accel_density = 0.05;   // m/s^2/sqrt(Hz)
     double heading_offset_rad = 0.3;  // IMU yaw minus true yaw
+    // A compass's deviation (hard iron): the IMU's yaw is off by a further
+    // compass_deviation_rad x sin(true yaw), an error that changes with the heading.
+    double compass_deviation_rad = 0.0;
     Eigen::Vector3d gyro_bias_rps = Eigen::Vector3d::Zero();  // constant, added to every rate
     // > 0: the IMU's orientation comes from an AHRS-like complementary filter (gyros plus a
     // pull toward the accelerometers' "down" with this time constant), so it takes the

@@ -64,6 +64,11 @@ struct EstimatorConfig
     // samples weighs as one independent measurement. 0 = samples independent, no inflation.
     double imu_tilt_time_constant_s = 10.0;
     double imu_tilt_accel_factor = 1.0;
+    // The IMU's yaw (compass) error is correlated too: the deviation changes with the heading
+    // and the false tilt turns into heading error. > 0: each sample's yaw variance is sigma^2
+    // x time_constant / (time since the last sample). 0 (default) = yaw samples independent:
+    // the honest yaw sigma standing still widens the terrain map's spread (docs/pose.md "Yaw").
+    double imu_yaw_time_constant_s = 0.0;
     double initial_gyro_bias_sigma_rps = 0.0087;  // 0.5 deg/s
     double gps_default_sigma_m = 5.0;           // when the fix does not carry sigmas
     double gps_min_sigma_m = 0.01;              // floor on reported sigmas
