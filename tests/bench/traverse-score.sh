@@ -65,12 +65,13 @@ if [ "${trav_maps:-0}" -gt 0 ]; then
     "$STACK_BIN/ugv-eval" traverse "$log" --truth "$STACK_OUT/run/truth.hf" --all >"$STACK_OUT/traverse-score.jsonl" 2>"$STACK_OUT/stderr/ugv-eval.log"
     summary=$(grep '"summary"' "$STACK_OUT/traverse-score.jsonl" | tail -n 1)
     echo "# summary: $summary"
-    read -r recall sampled_recall false_rate agreement < <(jq -r '"\(.recall // -1) \(.sampled_recall // -1) \(.false_obstacle_rate // 2) \(.arc_agreement // -1)"' <<<"$summary" 2>/dev/null || echo "-1 -1 2 -1")
+    read -r recall sampled_recall false_rate agreement sampled_agreement < <(jq -r '"\(.recall // -1) \(.sampled_recall // -1) \(.false_obstacle_rate // 2) \(.arc_agreement // -1) \(.arc_agreement_sampled // -1)"' <<<"$summary" 2>/dev/null || echo "-1 -1 2 -1 -1")
     verdict recall "$(awk -v v="$recall" 'BEGIN { exit !(v >= 0.98) }'; echo $?)" \
         "recall $recall (want >= 0.98; over the cells whose obstacle the laser sampled: $sampled_recall)"
     verdict false-obstacles "$(awk -v v="$false_rate" 'BEGIN { exit !(v >= 0 && v <= 0.01) }'; echo $?)" \
         "false-obstacle rate $false_rate (want <= 0.01)"
-    verdict arcs "$(awk -v v="$agreement" 'BEGIN { exit !(v >= 0.95) }'; echo $?)" "arc agreement $agreement (want >= 0.95)"
+    verdict arcs "$(awk -v v="$agreement" 'BEGIN { exit !(v >= 0.95) }'; echo $?)" \
+        "arc agreement $agreement (want >= 0.95; against the obstacles the laser sampled: $sampled_agreement)"
 else
     echo "# no TRAVERSABILITY_MAP in the log (no ugv-traverse in the stack): nothing to score"
 fi

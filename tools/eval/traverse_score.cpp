@@ -275,8 +275,10 @@ bool sampled_obstacle(const SampledExtremes& t, const CellTruth& c, int i, int j
     return false;
 }
 
+// `sampled_cells` (nx * ny) is set where a known truth-obstacle cell at any range was sampled.
 void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const PlacedClasses& map,
-                 const SampledExtremes* terrain, double range_m, std::FILE* misses, TraverseScore& s)
+                 const SampledExtremes* terrain, double range_m, std::FILE* misses, TraverseScore& s,
+                 std::vector<char>& sampled_cells)
 {
     const int nx = map.nx(), ny = map.ny();
     std::vector<TruthClass> t(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
@@ -314,14 +316,19 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
     const int slope_cells = static_cast<int>(std::ceil(rules.slope_radius_m / map.resolution() - 1e-6));
     const double slope_span_m = std::tan(rules.max_slope_deg * M_PI / 180.0) * rules.slope_radius_m;
     auto truth_obstacle = [&](int a, int b) { return is_obstacle(t[static_cast<std::size_t>(a * ny + b)]); };
+    sampled_cells.assign(t.size(), 0);
     for (int i = 0; i < nx; ++i) {
         for (int j = 0; j < ny; ++j) {
-            const TruthClass tc = t[static_cast<std::size_t>(i * ny + j)];
+            const std::size_t k = static_cast<std::size_t>(i * ny + j);
+            const TruthClass tc = t[k];
             if (tc == TruthClass::none) continue;
-            const double ahead = map.body(map.centre_world(i, j)).x();
-            if (!(ahead >= 0.0 && ahead <= range_m)) continue;
             const int8_t mc = map.cls(i, j);
             const bool known = mc != traversability_map_t::CLASS_UNKNOWN;
+            const bool sampled = known && is_obstacle(tc) && terrain != nullptr &&
+                                 sampled_obstacle(*terrain, cells[k], i, j, ground_cells, slope_cells, slope_span_m);
+            sampled_cells[k] = sampled ? 1 : 0;
+            const double ahead = map.body(map.centre_world(i, j)).x();
+            if (!(ahead >= 0.0 && ahead <= range_m)) continue;
             if (tc == TruthClass::traversable) {
                 if (!known) continue;
                 ++s.traversable_known;
@@ -337,10 +344,7 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
             ++(positive ? s.obstacle_seen : s.negative_seen);
             const bool detected = near(i, j, map_obstacle);
             if (detected) ++(positive ? s.obstacle_detected : s.negative_detected);
-            const std::size_t k = static_cast<std::size_t>(i * ny + j);
             const double threshold = positive ? cells[k].above : cells[k].below;
-            const bool sampled = terrain != nullptr && sampled_obstacle(*terrain, cells[k], i, j, ground_cells,
-                                                                        slope_cells, slope_span_m);
             if (!detected) print_miss(misses, m, map, i, j, "missed", tc, terrain, threshold, sampled);
             if (!sampled) continue;
             ++s.sampled;
@@ -352,11 +356,13 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
 struct TruthColumn
 {
     Eigen::Vector2d body_m;
-    bool seen;  // its map cell is known
+    bool seen;     // its map cell is known
+    bool sampled;  // its map cell is a sampled obstacle cell
 };
 
+// `sampled_cells` from score_cells; null when the map came without its terrain map.
 void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candidate_arcs_t& arcs, double rear_x_m,
-                double front_x_m, TraverseScore& s)
+                double front_x_m, const std::vector<char>* sampled_cells, TraverseScore& s)
 {
     traverse::Footprint fp;
     fp.rear_x_m = rear_x_m;
@@ -385,15 +391,22 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
                 const Eigen::Vector2d d = w - origin;
                 const Eigen::Vector2d b(cy * d.x() + sy * d.y(), -sy * d.x() + cy * d.y());
                 if (b.norm() > reach) continue;
-                columns.push_back({b, map.known_at(w)});
+                int ci, cj;
+                const bool in_map = map.cell_at(w, ci, cj);
+                const bool seen = in_map && map.cls(ci, cj) != traversability_map_t::CLASS_UNKNOWN;
+                const bool sampled = seen && sampled_cells != nullptr &&
+                                     (*sampled_cells)[static_cast<std::size_t>(ci) * static_cast<std::size_t>(map.ny()) +
+                                                      static_cast<std::size_t>(cj)] != 0;
+                columns.push_back({b, seen, sampled});
             }
         }
     }
     for (int k = 0; k < arcs.narcs; ++k) {
         const double curv = arcs.curvature[static_cast<std::size_t>(k)];
-        bool blocked_seen = false, blocked_all = false;
+        bool blocked_sampled = false, blocked_seen = false, blocked_all = false;
         for (const TruthColumn& c : columns) {
-            if (blocked_all && (blocked_seen || !c.seen)) continue;
+            // Only a column that could still change one of the three verdicts.
+            if (blocked_all && (blocked_seen || !c.seen) && (blocked_sampled || !c.sampled)) continue;
             // Outside the band the footprint can sweep (a strip, or an annulus about the turn
             // centre from the inner side's radius to the outer front corner's): never covered.
             if (std::abs(curv) < 1e-9) {
@@ -409,7 +422,8 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
             if (std::isnan(at)) continue;
             blocked_all = true;
             if (c.seen) blocked_seen = true;
-            if (blocked_seen) break;
+            if (c.sampled) blocked_sampled = true;
+            if (blocked_seen && (blocked_sampled || sampled_cells == nullptr)) break;
         }
         const bool said = arcs.blocked[static_cast<std::size_t>(k)] != 0;
         ++s.arcs;
@@ -418,6 +432,11 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
         s.arcs_agree += said == blocked_seen ? 1 : 0;
         s.arcs_truth_blocked_unrestricted += blocked_all ? 1 : 0;
         s.arcs_agree_unrestricted += said == blocked_all ? 1 : 0;
+        if (sampled_cells != nullptr) {
+            ++s.arcs_with_terrain;
+            s.arcs_truth_blocked_sampled += blocked_sampled ? 1 : 0;
+            s.arcs_agree_sampled += said == blocked_sampled ? 1 : 0;
+        }
     }
 }
 
@@ -441,6 +460,8 @@ void TraverseScore::add(const TraverseScore& o)
     arcs_truth_blocked += o.arcs_truth_blocked, arcs_agree += o.arcs_agree;
     arcs_truth_blocked_unrestricted += o.arcs_truth_blocked_unrestricted;
     arcs_agree_unrestricted += o.arcs_agree_unrestricted;
+    arcs_with_terrain += o.arcs_with_terrain, arcs_truth_blocked_sampled += o.arcs_truth_blocked_sampled;
+    arcs_agree_sampled += o.arcs_agree_sampled;
     sampled += o.sampled, sampled_detected += o.sampled_detected;
 }
 
@@ -463,7 +484,11 @@ std::string TraverseScore::json() const
       << ", \"arc_agreement\": " << ratio(arcs_agree, arcs)
       << ", \"arcs_truth_blocked_unrestricted\": " << arcs_truth_blocked_unrestricted
       << ", \"arcs_agree_unrestricted\": " << arcs_agree_unrestricted
-      << ", \"arc_agreement_unrestricted\": " << ratio(arcs_agree_unrestricted, arcs);
+      << ", \"arc_agreement_unrestricted\": " << ratio(arcs_agree_unrestricted, arcs)
+      << ", \"arcs_with_terrain\": " << arcs_with_terrain
+      << ", \"arcs_truth_blocked_sampled\": " << arcs_truth_blocked_sampled
+      << ", \"arcs_agree_sampled\": " << arcs_agree_sampled
+      << ", \"arc_agreement_sampled\": " << ratio(arcs_agree_sampled, arcs_with_terrain);
     return o.str();
 }
 
@@ -616,10 +641,11 @@ int TraverseScoreCommand::run() const
             source = &t->second;
             ++with_terrain;
         }
-        score_cells(truth, m, placed, source, range_m_, misses.get(), s);
+        std::vector<char> sampled_cells;
+        score_cells(truth, m, placed, source, range_m_, misses.get(), s, sampled_cells);
         const auto it = arcs.find(m.map_seq);
         if (it != arcs.end()) {
-            score_arcs(truth, placed, it->second, rear_x_m_, front_x_m_, s);
+            score_arcs(truth, placed, it->second, rear_x_m_, front_x_m_, source != nullptr ? &sampled_cells : nullptr, s);
             ++with_arcs;
         }
         std::printf("{\"utime\": %lld, \"seq\": %lld, \"map_seq\": %lld, %s}\n", static_cast<long long>(m.utime),

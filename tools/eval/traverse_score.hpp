@@ -27,6 +27,9 @@ struct TraverseScore
     long arcs = 0, arcs_blocked = 0;
     long arcs_truth_blocked = 0, arcs_agree = 0;
     long arcs_truth_blocked_unrestricted = 0, arcs_agree_unrestricted = 0;
+    // The same against the truth's obstacles whose cells the laser sampled (as `sampled`), over
+    // the arcs whose map came with its terrain map.
+    long arcs_with_terrain = 0, arcs_truth_blocked_sampled = 0, arcs_agree_sampled = 0;
 
     void add(const TraverseScore& o);
     // JSON members (no braces): the counts and the ratios (null where nothing was counted).

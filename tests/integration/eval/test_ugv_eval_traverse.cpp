@@ -451,7 +451,7 @@ TEST_CASE("ugv-eval traverse: whether a seen column is ground is judged on what 
     CHECK(strip.sampled_middle == 0);
 }
 
-TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unrestricted")
+TEST_CASE("ugv-eval traverse: arcs against the truth, sampled, seen by the laser and unrestricted")
 {
     World w(1.5);
     // The map says the left arc is blocked too: 2 of 3 agree.
@@ -470,6 +470,23 @@ TEST_CASE("ugv-eval traverse: arcs against the truth, seen by the laser and unre
     CHECK(r.get("arc_agreement") == 1.0);
     CHECK(r.get("arcs_truth_blocked_unrestricted") == 1);
     CHECK(r.get("arc_agreement_unrestricted") == Approx(2.0 / 3.0).margin(1e-5));
+    // Against the sampled truth, with the terrain map: box A sampled to its top blocks the
+    // straight arc; sampled only at its foot (0.1 m of its 0.6 m) it does not, though seen.
+    arcs = arcs_msg(1.5, {0, 1, 0});
+    const terrain_map_t topped = source_map(1.5, {kBoxA, kDitchC, kBoxB});
+    r = w.score(trav_map(1.5, w.perfect), &arcs, {}, &topped);
+    CHECK(r.get("arcs_with_terrain") == 3);
+    CHECK(r.get("arcs_truth_blocked_sampled") == 1);
+    CHECK(r.get("arc_agreement_sampled") == 1.0);
+    const terrain_map_t foot = source_map(1.5, {{kBoxA.x0, kBoxA.y0, kBoxA.x1, kBoxA.y1, 0.1}, kDitchC, kBoxB});
+    r = w.score(trav_map(1.5, w.perfect), &arcs, {}, &foot);
+    CHECK(r.get("arcs_truth_blocked") == 1);
+    CHECK(r.get("arcs_truth_blocked_sampled") == 0);
+    CHECK(r.get("arc_agreement_sampled") == Approx(2.0 / 3.0).margin(1e-5));
+    // Without the terrain map there is no sampled truth.
+    r = w.score(trav_map(1.5, w.perfect), &arcs);
+    CHECK(r.get("arcs_with_terrain") == 0);
+    CHECK(std::isnan(r.get("arc_agreement_sampled")));
     // Arcs of another terrain map are not paired with this one.
     arcs.map_seq = 8;
     r = w.score(trav_map(1.5, cls), &arcs);
