@@ -181,10 +181,10 @@ bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t
         s.bytes.clear();
         s.unwanted = true;
     }
+    s.have[f.fragment_no] = true;  // a release below forgets it with the rest
+    ++s.received;
+    s.payload_bytes += f.payload_size;
     if (s.unwanted) {
-        s.have[f.fragment_no] = true;
-        ++s.received;
-        s.payload_bytes += f.payload_size;
         if (s.received < s.fragment_count) return false;
         release(s, s.payload_bytes == s.message_size ? &counters_.unwanted_messages : &counters_.invalid_datagrams);
         return false;
@@ -198,9 +198,6 @@ bool LcmReassembler::add_fragment(uint64_t sender, const LcmDatagram& f, int64_t
         release(s, &counters_.evicted_messages);
         return false;
     }
-    s.have[f.fragment_no] = true;
-    ++s.received;
-    s.payload_bytes += f.payload_size;
     s.charged += cost;
     bytes_held_ += cost;
     if (f.fragment_no == 0) s.channel.assign(f.channel);
