@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -119,10 +120,13 @@ public:
         j = static_cast<int>(v);
         return true;
     }
-    bool known_at(const Eigen::Vector2d& w) const
+    // The index (i * ny + j) of the known cell holding world point w; -1 outside the map or
+    // where the cell is unknown.
+    std::ptrdiff_t known_cell(const Eigen::Vector2d& w) const
     {
         int i, j;
-        return cell_at(w, i, j) && cls(i, j) != traversability_map_t::CLASS_UNKNOWN;
+        if (!cell_at(w, i, j) || cls(i, j) == traversability_map_t::CLASS_UNKNOWN) return -1;
+        return static_cast<std::ptrdiff_t>(i) * snap_.ny + j;
     }
     // World -> body frame (x forward, y left) with the pose's position and yaw.
     Eigen::Vector2d body(const Eigen::Vector2d& w) const
@@ -287,13 +291,12 @@ void score_cells(const TruthTerrain& truth, const traversability_map_t& m, const
     // Seen ground: a column in a known cell, at a height the cell's samples reach. A cell known
     // for a face's samples has not seen the ground at the face's foot, nor the floor beside it.
     auto seen = [&](int a, int b) {
-        int i, j;
-        if (!map.cell_at({f.cell_x(a), f.cell_y(b)}, i, j) || map.cls(i, j) == traversability_map_t::CLASS_UNKNOWN)
-            return false;
+        const std::ptrdiff_t k = map.known_cell({f.cell_x(a), f.cell_y(b)});
+        if (k < 0) return false;
         if (terrain == nullptr) return true;
-        const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(j);
         const double z = f.at(a, b);
-        return z >= terrain->min_z[k] - kSeenHeightTolerance && z <= terrain->max_z[k] + kSeenHeightTolerance;
+        const auto u = static_cast<std::size_t>(k);
+        return z >= terrain->min_z[u] - kSeenHeightTolerance && z <= terrain->max_z[u] + kSeenHeightTolerance;
     };
     const SeenGround seen_ground(truth, seen);
     for (int i = 0; i < nx; ++i) {
@@ -391,13 +394,9 @@ void score_arcs(const TruthTerrain& truth, const PlacedClasses& map, const candi
                 const Eigen::Vector2d d = w - origin;
                 const Eigen::Vector2d b(cy * d.x() + sy * d.y(), -sy * d.x() + cy * d.y());
                 if (b.norm() > reach) continue;
-                int ci, cj;
-                const bool in_map = map.cell_at(w, ci, cj);
-                const bool seen = in_map && map.cls(ci, cj) != traversability_map_t::CLASS_UNKNOWN;
-                const bool sampled = seen && sampled_cells != nullptr &&
-                                     (*sampled_cells)[static_cast<std::size_t>(ci) * static_cast<std::size_t>(map.ny()) +
-                                                      static_cast<std::size_t>(cj)] != 0;
-                columns.push_back({b, seen, sampled});
+                const std::ptrdiff_t cell = map.known_cell(w);
+                const bool sampled = cell >= 0 && sampled_cells != nullptr && (*sampled_cells)[static_cast<std::size_t>(cell)] != 0;
+                columns.push_back({b, cell >= 0, sampled});
             }
         }
     }
