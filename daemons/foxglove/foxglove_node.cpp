@@ -1,6 +1,5 @@
 #include "foxglove_node.hpp"
 
-
 #include <exception>
 
 #include <spdlog/spdlog.h>

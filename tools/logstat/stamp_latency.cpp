@@ -9,7 +9,7 @@ void StampLatency::add_input(int64_t recv_utime, int64_t utime)
     // An output logged before its input answers it as it comes: the logger finished
     // reassembling the (large) input after the (small) answer.
     const auto early = std::find_if(early_outputs_.begin(), early_outputs_.end(),
-                                    [&](const Input& out) { return out.utime == utime; });
+                                    [&](const Stamped& out) { return out.utime == utime; });
     if (early != early_outputs_.end()) {
         latencies_.push_back(0);
         ++early_;
@@ -25,7 +25,7 @@ void StampLatency::add_input(int64_t recv_utime, int64_t utime)
 
 void StampLatency::add_output(int64_t recv_utime, int64_t utime)
 {
-    const auto it = std::find_if(inputs_.begin(), inputs_.end(), [&](const Input& in) { return in.utime == utime; });
+    const auto it = std::find_if(inputs_.begin(), inputs_.end(), [&](const Stamped& in) { return in.utime == utime; });
     if (it == inputs_.end()) {
         // Not (yet) logged: its input may follow; an output of an input never logged is ignored.
         early_outputs_.push_back({recv_utime, utime});

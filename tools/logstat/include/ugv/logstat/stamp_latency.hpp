@@ -26,14 +26,14 @@ public:
     std::size_t early() const { return early_; }
 
 private:
-    struct Input
+    struct Stamped  // a logged message: when it was received, and the utime it carries
     {
         int64_t recv_utime, utime;
     };
     // The newest inputs; an output answers one of them or none (a log holds hours of maps).
     static constexpr std::size_t kMaxWaiting = 1024;
-    std::deque<Input> inputs_;
-    std::deque<Input> early_outputs_;  // outputs whose input was not logged yet
+    std::deque<Stamped> inputs_;
+    std::deque<Stamped> early_outputs_;  // outputs whose input was not logged yet
     std::size_t forgotten_ = 0;
     std::size_t early_ = 0;
     std::vector<int64_t> latencies_;
