@@ -30,6 +30,8 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // from a neighbour), its bottom max_drop below it, an obstacle within the slope window (the
 // plane there says nothing about the slope).
 constexpr uint8_t kHigh = 1, kLow = 2, kObstacleNear = 4;
+// How near (in cells) a cell of few samples needs an obstacle of its own kind to be one.
+constexpr int kFewSupportCells = 2;
 static_assert(kGroundStride == 3, "the lattice squares' flags are taken three cells at a time");
 
 int half_width(double radius_m, double resolution_m) { return ground_half_width(radius_m, resolution_m); }
@@ -255,12 +257,12 @@ void CellClassifier::local_ground(const TerrainGrid& g, double radius_m, double 
     // + kPadLanes: a window row's last vector.
     parity_means_.resize(2 * static_cast<std::size_t>(nx) * half + kernels::kPadLanes);
     std::fill(parity_means_.end() - kernels::kPadLanes, parity_means_.end(), kNaN);
-    for (std::size_t k = 0; k < n; ++k) known_f_[k] = known_[k] ? 1.0f : 0.0f;
+    for (std::size_t k = 0; k < n; ++k) known_f_[k] = ground_points_[k] ? 1.0f : 0.0f;
     for (int i = 0; i < nx; ++i) {
         float* even = &parity_means_[static_cast<std::size_t>(i) * half];
         float* odd = &parity_means_[(static_cast<std::size_t>(nx) + i) * half];
         const float* mr = &g.mean_z_m[i * w];
-        const uint8_t* kr = &known_[i * w];
+        const uint8_t* kr = &ground_points_[i * w];
         for (std::size_t e = 0; e < (w + 1) / 2; ++e) even[e] = kr[2 * e] ? mr[2 * e] : kNaN;
         for (std::size_t e = 0; e < w / 2; ++e) odd[e] = kr[2 * e + 1] ? mr[2 * e + 1] : kNaN;
         if (w & 1) odd[w / 2] = kNaN;
@@ -452,6 +454,17 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // Unknown cells keep their mean.
     kernels::cell_levels(n, top_.data(), bottom_.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
                          known_.data(), levels_.mean_z_m.data());
+    // The ground is fitted to the known cells that are not a face: a cell whose own samples
+    // span max_step is no ground level. A wall's foot at the edge of what is known would
+    // tilt the plane up to the wall, and lift the ground under the cells behind its face.
+    ground_points_.resize(n);
+    {
+        const float max_step = float_at_least(c.max_step_m);
+        const uint8_t* known = known_.data();
+        const float *top = top_.data(), *bottom = bottom_.data();
+        uint8_t* points = ground_points_.data();
+        for (std::size_t k = 0; k < n; ++k) points[k] = static_cast<uint8_t>(known[k] & !(top[k] - bottom[k] >= max_step));
+    }
     local_ground(levels_, c.ground_radius_m, c.max_step_m, out.ground_m);
     // The lowest level within step_radius, for the vertical faces below.
     {
@@ -487,11 +500,13 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                 if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
         if (!drop_beside) edge_[k] |= kHigh;
     }
-    // A cell of fewer samples than min_support_samples is an obstacle only if a neighbour
-    // is too: one stray return alone is not.
+    // A cell of fewer samples than min_support_samples is an obstacle only if a cell within
+    // two is too: one stray return alone is not. Two, not one: behind a face the terrain
+    // map's cells often hold only spread shares (unknown here), so a sample of the face
+    // that lands behind it lies two cells from the face's obstacle.
     auto neighbour_has = [&](int i, int j, uint8_t bit) {
-        for (int p = std::max(0, i - 1); p <= std::min(nx - 1, i + 1); ++p)
-            for (int q = std::max(0, j - 1); q <= std::min(ny - 1, j + 1); ++q)
+        for (int p = std::max(0, i - kFewSupportCells); p <= std::min(nx - 1, i + kFewSupportCells); ++p)
+            for (int q = std::max(0, j - kFewSupportCells); q <= std::min(ny - 1, j + kFewSupportCells); ++q)
                 if ((p != i || q != j) && (edge_[static_cast<std::size_t>(p) * ny + q] & bit)) return true;
         return false;
     };

@@ -37,8 +37,9 @@ PlaneFit fit_plane(const std::vector<float>& z, const std::vector<std::array<flo
 
 }  // namespace
 
-void local_ground_reference(const TerrainGrid& g, const std::vector<uint8_t>& known, double radius_m,
-                            double max_step_m, std::vector<float>& ground)
+void local_ground_reference(const TerrainGrid& g, const std::vector<uint8_t>& known,
+                            const std::vector<uint8_t>& points, double radius_m, double max_step_m,
+                            std::vector<float>& ground)
 {
     constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     const int nx = g.nx, ny = g.ny, h = ground_half_width(radius_m, g.resolution_m);
@@ -50,7 +51,7 @@ void local_ground_reference(const TerrainGrid& g, const std::vector<uint8_t>& kn
     for (int a = 0; a < lx; ++a)
         for (int b = 0; b < ly; ++b) {
             const int i = a * kGroundStride, j = b * kGroundStride;
-            // The known cells of the window (every other row and column) and the plane through
+            // The points of the window (every other row and column) and the plane through
             // them, fitted twice: the second time without the cells more than max_step/2 off the
             // first (an obstacle at the window's side would tilt it). Their heights less the
             // plane's slope are level; a low percentile of them is the ground.
@@ -61,7 +62,7 @@ void local_ground_reference(const TerrainGrid& g, const std::vector<uint8_t>& kn
             for (int p = std::max(0, i - h); p <= std::min(nx - 1, i + h); p += 2)
                 for (int q = std::max(0, j - h); q <= std::min(ny - 1, j + h); q += 2) {
                     const std::size_t m = static_cast<std::size_t>(p) * ny + q;
-                    if (!known[m]) continue;
+                    if (!points[m]) continue;
                     window.push_back(g.mean_z_m[m] - zref);
                     offsets.push_back({static_cast<float>(p - i), static_cast<float>(q - j)});
                 }

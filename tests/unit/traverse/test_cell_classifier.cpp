@@ -152,6 +152,42 @@ TEST_CASE("a wall at range whose spread samples raise the means before it is sti
     CHECK(l.ground_m[at(g, 11.0, 2.5)] < kGround + 0.05);
 }
 
+TEST_CASE("a face at the edge of what is known does not lift the ground behind it")
+{
+    // A wall 9 m ahead seen only up to 0.49 m, nothing known behind its face but one cell two
+    // rows back holding a single sample of it (at 0.24 m). The face's cells, whose samples span
+    // the face, are no ground level: fitted to them, the plane at the edge of what is known
+    // tilted up to the wall and lifted the ground under that cell to its sample's height.
+    TerrainGrid g = empty_grid(80, 60);
+    fill(g, [](double, double) { return kGround; });
+    std::vector<double> face;
+    for (int s = 0; s < 24; ++s) face.push_back(kGround + 0.02 + 0.47 * s / 23.0);
+    int face_row = -1;
+    for (int i = 0; i < g.nx; ++i) {
+        const double x = cx(g, i);
+        if (x < 9.0) continue;
+        if (face_row < 0) face_row = i;
+        for (int j = 0; j < g.ny; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
+            if (i == face_row) {
+                set_samples(g, i, j, face);
+            } else {
+                g.count[k] = 0;
+                g.mean_z_m[k] = g.variance_z_m2[k] = g.max_z_m[k] = g.min_z_m[k] = g.age_s[k] = NAN;
+            }
+        }
+    }
+    const int behind = face_row + 2, j = g.ny / 2;
+    set_samples(g, behind, j, {kGround + 0.24});
+    const std::size_t k = static_cast<std::size_t>(behind) * g.ny + j;
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[static_cast<std::size_t>(face_row) * g.ny + j] == CellClass::obstacle);
+    CHECK(l.ground_m[k] < kGround + 0.03f);
+    CHECK(l.cell_class[k] == CellClass::obstacle);
+    // The ground before the face stays traversable.
+    CHECK(l.cell_class[static_cast<std::size_t>(face_row - 2) * g.ny + j] == CellClass::traversable);
+}
+
 TEST_CASE("one stray sample does not make an obstacle")
 {
     TerrainGrid g = empty_grid(60, 60);

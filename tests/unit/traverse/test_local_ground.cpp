@@ -29,8 +29,9 @@ Comparison compare(const TerrainGrid& g, const ClassifierConfig& config)
     std::vector<uint8_t> known(g.cells());
     for (std::size_t k = 0; k < g.cells(); ++k) known[k] = layers.cell_class[k] != CellClass::unknown ? 1 : 0;
     std::vector<float> reference;
-    local_ground_reference(ground_levels(g, known, config.min_support_samples), known, config.ground_radius_m,
-                           config.max_step_m, reference);
+    local_ground_reference(ground_levels(g, known, config.min_support_samples), known,
+                           ground_points(g, known, config.min_support_samples, config.max_step_m),
+                           config.ground_radius_m, config.max_step_m, reference);
     Comparison c;
     REQUIRE(reference.size() == layers.ground_m.size());
     for (std::size_t k = 0; k < g.cells(); ++k) {

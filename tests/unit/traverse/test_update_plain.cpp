@@ -53,7 +53,9 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
     for (std::size_t k = 0; k < n; ++k) known[k] = std::isnan(top[k]) ? 0 : 1;
     std::vector<float> ground;
     const TerrainGrid levels = ground_levels(g, known, c.min_support_samples);
-    local_ground_reference(levels, known, c.ground_radius_m, c.max_step_m, ground);
+    std::vector<uint8_t> points(n);
+    for (std::size_t k = 0; k < n; ++k) points[k] = known[k] && !(static_cast<double>(top[k] - bottom[k]) >= c.max_step_m);
+    local_ground_reference(levels, known, points, c.ground_radius_m, c.max_step_m, ground);
     l.ground_m = ground;
     std::vector<float> lowest_mean(n, kNaN);
     for (int i = 0; i < nx; ++i)
@@ -87,7 +89,7 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
             const std::size_t k = at(i, j);
             if (!known[k]) continue;
             int high_beside = 0, low_beside = 0;
-            window(i, j, 1, [&](std::size_t m) {
+            window(i, j, 2, [&](std::size_t m) {
                 high_beside += m != k && high[m];
                 low_beside += m != k && low[m];
             });

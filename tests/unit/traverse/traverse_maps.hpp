@@ -54,6 +54,23 @@ inline TerrainGrid ground_levels(const TerrainGrid& g, const std::vector<uint8_t
     return levels;
 }
 
+// The cells the local ground is fitted to (section 1, step 4), written plainly: the known
+// ones whose supported top and bottom lie less than max_step apart (a face's cell is no
+// ground level).
+inline std::vector<uint8_t> ground_points(const TerrainGrid& g, const std::vector<uint8_t>& known, double min_support,
+                                          double max_step)
+{
+    std::vector<uint8_t> points(g.cells(), 0);
+    for (std::size_t k = 0; k < g.cells(); ++k) {
+        if (!known[k]) continue;
+        const float var = std::isfinite(g.variance_z_m2[k]) ? g.variance_z_m2[k] : 0.0f;
+        const float top = supported(g.mean_z_m[k], g.max_z_m[k], var, g.count[k], min_support);
+        const float bottom = supported(g.mean_z_m[k], g.min_z_m[k], var, g.count[k], min_support);
+        points[k] = static_cast<double>(top - bottom) >= max_step ? 0 : 1;
+    }
+    return points;
+}
+
 // Like the demo's (150x150 at 0.2 m): rough ground, boxes, a wall, a ditch, the dead zone
 // and the shadows unknown.
 inline TerrainGrid demo_like_map()

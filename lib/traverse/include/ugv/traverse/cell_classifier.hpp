@@ -57,14 +57,15 @@ public:
     const ClassifierConfig& config() const { return config_; }
 
 private:
-    // ground := the local ground under every known cell (step 3 of classify).
+    // ground := the local ground under every known cell (known_), fitted to the levels of
+    // the cells of ground_points_ (step 3 of classify).
     void local_ground(const TerrainGrid& grid, double radius_m, double max_step_m, std::vector<float>& ground);
 
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
     std::vector<float> top_, bottom_, lowest_, highest_, lowest_level_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
-    std::vector<uint8_t> measured_, edge_, known_, row_known_, face_;
+    std::vector<uint8_t> measured_, edge_, known_, ground_points_, row_known_, face_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
@@ -99,9 +100,11 @@ double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& 
 
 // The local ground the classifier uses (docs/traverse.md, section 1, step 4), written plainly:
 // ground := under each cell with known[k] true, the level interpolated from the lattice
-// points' planes and 40th percentiles of grid.mean_z_m over the known cells within radius_m
-// (the classifier passes its cells' levels there). The classifier's is tested against it.
-void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known, double radius_m,
-                            double max_step_m, std::vector<float>& ground);
+// points' planes and 40th percentiles of grid.mean_z_m over the cells with points[k] true
+// within radius_m (the classifier passes its cells' levels there, and as points its known
+// cells that are not a face). The classifier's is tested against it.
+void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known,
+                            const std::vector<uint8_t>& points, double radius_m, double max_step_m,
+                            std::vector<float>& ground);
 
 }  // namespace ugv::traverse
