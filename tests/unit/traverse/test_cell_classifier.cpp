@@ -1,5 +1,6 @@
 // Known-answer maps for the cell classes: flat, a box, a wall cell with a low mean but a
-// high max, one stray sample, a ditch, slopes below and above the limit, aged data.
+// high max, a face at the edge of what is known, one stray sample, a ditch, slopes below
+// and above the limit, aged data.
 #include <catch2/catch.hpp>
 
 #include <cmath>

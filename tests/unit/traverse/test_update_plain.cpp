@@ -53,9 +53,8 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
     for (std::size_t k = 0; k < n; ++k) known[k] = std::isnan(top[k]) ? 0 : 1;
     std::vector<float> ground;
     const TerrainGrid levels = ground_levels(g, known, c.min_support_samples);
-    std::vector<uint8_t> points(n);
-    for (std::size_t k = 0; k < n; ++k) points[k] = known[k] && !(static_cast<double>(top[k] - bottom[k]) >= c.max_step_m);
-    local_ground_reference(levels, known, points, c.ground_radius_m, c.max_step_m, ground);
+    local_ground_reference(levels, known, ground_points(g, known, c.min_support_samples, c.max_step_m),
+                           c.ground_radius_m, c.max_step_m, ground);
     l.ground_m = ground;
     std::vector<float> lowest_mean(n, kNaN);
     for (int i = 0; i < nx; ++i)
