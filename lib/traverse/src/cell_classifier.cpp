@@ -454,9 +454,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // Unknown cells keep their mean.
     kernels::cell_levels(n, top_.data(), bottom_.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
                          known_.data(), levels_.mean_z_m.data());
-    // The ground is fitted to the known cells that are not a face: a cell whose own samples
-    // span max_step is no ground level. A wall's foot at the edge of what is known would
-    // tilt the plane up to the wall, and lift the ground under the cells behind its face.
+    // The ground is fitted to the known cells that are not a face: a cell whose supported top
+    // and bottom lie max_step apart is no ground level. A wall's foot at the edge of what is
+    // known would tilt the plane up to the wall, and lift the ground under the cells behind
+    // its face.
     ground_points_.resize(n);
     {
         const float max_step = float_at_least(c.max_step_m);
