@@ -27,7 +27,8 @@ namespace ugv::eval {
 namespace {
 
 constexpr int kMaxCells = 4'000'000;  // as lib/traverse's check_grid
-// A sample within the laser's noise of the obstacle's threshold height counts as one of it.
+// Heights are float32 (the truth's and the map's samples): within their rounding of the
+// obstacle's threshold height, a sample counts as one of it. Not the laser's noise.
 constexpr double kSampleTolerance = 1e-5;
 // How far a column may lie outside its cell's samples and still count as seen: the laser's
 // noise and the pose's error at range, with the rough ground's 2 cm between a cell's columns.
