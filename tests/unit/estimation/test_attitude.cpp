@@ -92,7 +92,7 @@ TEST_CASE("gyro bias: estimated from the GPS velocity and course, the attitude d
     Noise noise = quiet_imu();
     noise.gyro_bias_rps = Eigen::Vector3d(0.004, -0.003, 0.002);  // 0.23, 0.17, 0.11 deg/s
     const Trajectory t = circle(20.0, 3.0);
-    const Run run = simulate(t, noise, kTestDatum, 90.0, 13);
+    const Run run = simulate(t, noise, kTestDatum, 90.0, 5);
     PoseEstimator est(matched_config(noise));
     const std::vector<PoseEstimate> poses = run_all(est, run.inputs);
     REQUIRE(!poses.empty());
@@ -118,7 +118,7 @@ TEST_CASE("a steady turn with an AHRS's false tilt: roll and pitch within 0.3 de
     noise.imu_orientation_sigma_rad = 0.001;
     noise.gyro_bias_rps = Eigen::Vector3d(0.002, -0.002, 0.001);
     const Trajectory t = circle(50.0, 5.0);
-    const Run run = simulate(t, noise, kTestDatum, 90.0, 13);
+    const Run run = simulate(t, noise, kTestDatum, 90.0, 11);
     PoseEstimator est(matched_config(noise));
     const std::vector<PoseEstimate> poses = run_all(est, run.inputs);
     TiltScore ahrs, ours;
