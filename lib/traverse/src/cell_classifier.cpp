@@ -454,7 +454,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // Unknown cells keep their mean.
     kernels::cell_levels(n, top_.data(), bottom_.data(), g.mean_z_m.data(), g.max_z_m.data(), g.min_z_m.data(),
                          known_.data(), levels_.mean_z_m.data());
-    // The ground is fitted to the known cells that are not a face: a cell whose supported top
+    // The ground is fitted to the known cells that hold no step: a cell whose supported top
     // and bottom lie max_step apart is no ground level. A wall's foot at the edge of what is
     // known would tilt the plane up to the wall, and lift the ground under the cells behind
     // its face.

@@ -55,8 +55,8 @@ inline TerrainGrid ground_levels(const TerrainGrid& g, const std::vector<uint8_t
 }
 
 // The cells the local ground is fitted to (section 1, step 4), written plainly: the known
-// ones whose supported top and bottom lie less than max_step apart (a face's cell is no
-// ground level).
+// ones whose supported top and bottom lie less than max_step apart (a cell that holds a step
+// is no ground level).
 inline std::vector<uint8_t> ground_points(const TerrainGrid& g, const std::vector<uint8_t>& known, double min_support,
                                           double max_step)
 {

@@ -102,7 +102,7 @@ double slope_reference_deg(const TerrainGrid& grid, const std::vector<uint8_t>& 
 // ground := under each cell with known[k] true, the level interpolated from the lattice
 // points' planes and 40th percentiles of grid.mean_z_m over the cells with points[k] true
 // within radius_m (the classifier passes its cells' levels there, and as points its known
-// cells that are not a face). The classifier's is tested against it.
+// cells that hold no step). The classifier's is tested against it.
 void local_ground_reference(const TerrainGrid& grid, const std::vector<uint8_t>& known,
                             const std::vector<uint8_t>& points, double radius_m, double max_step_m,
                             std::vector<float>& ground);
