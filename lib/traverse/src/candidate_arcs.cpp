@@ -68,21 +68,28 @@ void map_cells(const float* __restrict xs, const float* __restrict ys, std::size
     }
 }
 
+// The smallest s in [from_s, max_s] (in steps of step_m from from_s) at which p lies inside
+// the footprint of half-width half_width_m, NaN if none.
+double first_cover_from(double k, const Footprint& f, double half_width_m, double from_s_m, double max_s_m,
+                        const Eigen::Vector2d& p, double step_m)
+{
+    const int steps = static_cast<int>(std::ceil(std::max(0.0, max_s_m - from_s_m) / step_m));
+    for (int n = 0; n <= steps; ++n) {
+        const double s = std::min(max_s_m, from_s_m + n * step_m);
+        const ArcPose a = arc_pose(k, s);
+        const double dx = p.x() - a.x, dy = p.y() - a.y;
+        const double c = std::cos(a.heading), sn = std::sin(a.heading);
+        if (inside_footprint(f, half_width_m, c * dx + sn * dy, -sn * dx + c * dy)) return s;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 double first_cover_s(double k, const Footprint& f, double margin_m, double max_s_m, const Eigen::Vector2d& p,
                      double step_m)
 {
-    const double half = 0.5 * f.width_m + margin_m;
-    const int steps = static_cast<int>(std::ceil(max_s_m / step_m));
-    for (int n = 0; n <= steps; ++n) {
-        const double s = std::min(max_s_m, n * step_m);
-        const ArcPose a = arc_pose(k, s);
-        const double dx = p.x() - a.x, dy = p.y() - a.y;
-        const double c = std::cos(a.heading), sn = std::sin(a.heading);
-        if (inside_footprint(f, half, c * dx + sn * dy, -sn * dx + c * dy)) return s;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
+    return first_cover_from(k, f, 0.5 * f.width_m + margin_m, 0.0, max_s_m, p, step_m);
 }
 
 CandidateArcs::CandidateArcs(const ArcSetConfig& c, const Footprint& f, double resolution_m)
@@ -115,7 +122,10 @@ CandidateArcs::CandidateArcs(const ArcSetConfig& c, const Footprint& f, double r
 
     // Sweep each arc once: march along it in steps that move the footprint's farthest point
     // by at most a quarter of a fine cell, and mark the fine cells its outline passes over
-    // (and, at the start, those inside it) with the first s.
+    // (and, at the start, those inside it). A marked fine cell is kept if the footprint
+    // covers its centre, from the s at which it does: a map cell is then swept when about
+    // its centre is, so the swept width is the configured one to within a fine cell, not
+    // widened by every map cell the outline grazes.
     const double fine = 0.5 * resolution_m;
     const double reach = std::hypot(std::max(f.front_x_m, -f.rear_x_m), half);
     for (double k : curvatures_) {
@@ -153,10 +163,14 @@ CandidateArcs::CandidateArcs(const ArcSetConfig& c, const Footprint& f, double r
         }
         std::vector<SweptCell> cells;
         cells.reserve(first.size());
-        for (const auto& [key, s] : first) {
+        for (const auto& [key, touched_s] : first) {
             const auto ix = static_cast<int32_t>(static_cast<uint32_t>(key >> 32));
             const auto iy = static_cast<int32_t>(static_cast<uint32_t>(key & 0xffffffffu));
-            cells.push_back({static_cast<float>((ix + 0.5) * fine), static_cast<float>((iy + 0.5) * fine), s});
+            const Eigen::Vector2d centre((ix + 0.5) * fine, (iy + 0.5) * fine);
+            // The outline reaches a cell no later than its centre, less one step's slack.
+            const double s = first_cover_from(k, f, half, std::max(0.0, touched_s - 2 * ds), c.length_m, centre, ds);
+            if (std::isnan(s)) continue;
+            cells.push_back({static_cast<float>(centre.x()), static_cast<float>(centre.y()), static_cast<float>(s)});
         }
         std::sort(cells.begin(), cells.end(), [](const SweptCell& a, const SweptCell& b) {
             return a.s_m != b.s_m ? a.s_m < b.s_m : (a.x_m != b.x_m ? a.x_m < b.x_m : a.y_m < b.y_m);

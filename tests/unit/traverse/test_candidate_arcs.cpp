@@ -87,6 +87,33 @@ TEST_CASE("a map turned by its residual yaw is read in the body frame")
     CHECK(std::abs(j.arcs[12].clear_distance_m - 6.0) <= 0.25);
 }
 
+TEST_CASE("the swept width is the configured one to within a fine cell")
+{
+    // Two walls two cells thick along the straight arc, the map's cells shifted across it by
+    // fractions of a cell. Walls whose cells lie wholly outside the swept footprint leave the arc free (when
+    // every map cell the outline grazed counted, they blocked it from up to a cell and a half
+    // outside); walls whose nearest cells have their centres inside it block it.
+    const ArcSetConfig ac;
+    const Footprint fp;
+    const double half = 0.5 * fp.width_m + ac.margin_m;
+    for (double shift : {0.0, 0.03, 0.05, 0.1, 0.15}) {
+        for (bool reaching_in : {false, true}) {
+            CAPTURE(shift, reaching_in);
+            TerrainGrid g = empty_grid();
+            g.origin_y_m += shift;
+            const double from_y = reaching_in ? half - g.resolution_m : half + 0.5 * g.resolution_m + 1e-6;
+            for (int i = 0; i < g.nx; ++i)
+                for (int j = 0; j < g.ny; ++j) {
+                    const double y = std::abs(cy(g, j));
+                    const double z = 1.5 + (y >= from_y && y < from_y + 2 * g.resolution_m ? 1.0 : 0.0);
+                    set_samples(g, i, j, {z - 0.01, z, z + 0.01, z, z - 0.005, z + 0.005});
+                }
+            const Judged j = judge(g, ac);
+            CHECK(j.arcs[12].blocked == reaching_in);
+        }
+    }
+}
+
 TEST_CASE("unknown cells lower the merit, and block under the cautious policy")
 {
     TerrainGrid g = empty_grid();
