@@ -1,6 +1,7 @@
 #include "ugv/traverse/cell_classifier.hpp"
 
 #include "classifier_kernels.hpp"
+#include "drop_across_unknown.hpp"
 #include "local_ground.hpp"
 #include "ugv/simd/float4.hpp"
 
@@ -500,6 +501,16 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
             for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
                 if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
         if (!drop_beside) edge_[k] |= kHigh;
+    }
+    // A drop whose face lies in its rim's shadow, across unknown cells within slope_radius
+    // (drop_across_unknown.hpp). Obstacles already are skipped.
+    {
+        const float* top = top_.data();
+        window_extreme<true>([=](std::size_t k) { return std::isnan(top[k]) ? kInf : top[k]; }, nx, ny,
+                             half_width(c.slope_radius_m, g.resolution_m), window_, lowest_top_);
+        if (!drops_ || !drops_->built_for(c.slope_radius_m, g.resolution_m))
+            drops_ = std::make_shared<const DropsAcrossUnknown>(c.slope_radius_m, g.resolution_m);
+        drops_->mark(g, top_, bottom_, lowest_top_, c.max_drop_m, c.max_slope_deg, kLow, kHigh, edge_, out.drop_m);
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a cell within
     // two is too: one stray return alone is not. Two, not one: behind a face the terrain

@@ -1,6 +1,6 @@
 // Known-answer maps for the cell classes: flat, a box, a wall cell with a low mean but a
-// high max, a face at the edge of what is known, one stray sample, a ditch, slopes below
-// and above the limit, aged data.
+// high max, a face at the edge of what is known, one stray sample, a ditch, a drop in its
+// rim's shadow, slopes below and above the limit, aged data.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -239,6 +239,45 @@ TEST_CASE("a ditch is a negative obstacle")
     CHECK(l.cell_class[at(g, 9.7, 0.1)] == CellClass::traversable);
     CHECK(l.cell_class[at(g, 11.3, 0.1)] == CellClass::traversable);
     CHECK(count_class(l, CellClass::obstacle) == 0);
+}
+
+TEST_CASE("a drop whose face lies in its rim's shadow makes the rim a negative obstacle")
+{
+    // A wide ditch from x = 6.1 on (a cell boundary); the laser, looking over the rim, never
+    // sees its near wall: the row of cells from 6.1 to 6.3 is unknown. The floor is wider than the ground
+    // radius, so it is its own local ground, and no window of the step rules spans the gap.
+    auto shadowed = [](double depth_m) {
+        TerrainGrid g = empty_grid(80, 80);
+        fill(g, [=](double x, double) { return kGround - (x >= 6.1 ? depth_m : 0.0); });
+        for (int i = 0; i < g.nx; ++i)
+            for (int j = 0; j < g.ny; ++j)
+                if (cx(g, i) > 6.1 && cx(g, i) < 6.3) {
+                    const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
+                    g.count[k] = 0;
+                    g.mean_z_m[k] = g.max_z_m[k] = g.min_z_m[k] = g.variance_z_m2[k] = NAN;
+                }
+        return g;
+    };
+    SECTION("0.3 m deep: the rim is the top of a drop")
+    {
+        const TerrainGrid g = shadowed(0.3);
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 6.0, 0.1)] == CellClass::negative_obstacle);
+        CHECK(l.cell_class[at(g, 6.0, -3.1)] == CellClass::negative_obstacle);
+        CHECK(l.drop_m[at(g, 6.0, 0.1)] > 0.27f);
+        CHECK(l.cell_class[at(g, 6.2, 0.1)] == CellClass::unknown);
+        // The ground before the rim and the floor beyond the gap are not.
+        CHECK(l.cell_class[at(g, 5.6, 0.1)] == CellClass::traversable);
+        CHECK(l.cell_class[at(g, 6.6, 0.1)] == CellClass::traversable);
+        CHECK(count_class(l, CellClass::obstacle) == 0);
+    }
+    SECTION("0.15 m deep: less than max_drop, no drop")
+    {
+        const TerrainGrid g = shadowed(0.15);
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 6.0, 0.1)] == CellClass::traversable);
+        CHECK(count_class(l, CellClass::negative_obstacle) == 0);
+    }
 }
 
 TEST_CASE("a vertical face is an obstacle where the local ground does not show it")

@@ -83,6 +83,36 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
             window(i, j, hs, [&](std::size_t m) { drop_beside = drop_beside || low[m]; });
             if (!drop_beside) high[k] = 1;
         }
+    // Drops across unknown cells: a known cell not high whose bottom stands max_drop over the
+    // top of a known cell 2 or more cells away within slope_radius, and more steeply than
+    // max_slope over the distance between their centres, every cell the segment between the
+    // centres crosses unknown.
+    const int hd = std::max(1, static_cast<int>(std::floor(c.slope_radius_m / g.resolution_m + 1e-6)));
+    const double tan_slope = std::tan(c.max_slope_deg * M_PI / 180.0);
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t k = at(i, j);
+            if (!known[k] || high[k]) continue;
+            for (int di = -hd; di <= hd; ++di)
+                for (int dj = -hd; dj <= hd; ++dj) {
+                    const int ti = i + di, tj = j + dj;
+                    const double d = std::hypot(di, dj) * g.resolution_m;
+                    if (std::max(std::abs(di), std::abs(dj)) < 2 || d > c.slope_radius_m + 1e-6) continue;
+                    if (ti < 0 || tj < 0 || ti >= nx || tj >= ny || !known[at(ti, tj)]) continue;
+                    const double drop = static_cast<double>(bottom[k]) - top[at(ti, tj)];
+                    if (drop < c.max_drop_m || drop < tan_slope * d) continue;
+                    bool unseen = true;
+                    for (int s = 0; s < 256 && unseen; ++s) {
+                        const double t = (s + 0.5) / 256;
+                        const int p = i + static_cast<int>(std::lround(t * di)), q = j + static_cast<int>(std::lround(t * dj));
+                        if ((p == i && q == j) || (p == ti && q == tj)) continue;
+                        unseen = p >= 0 && q >= 0 && p < nx && q < ny && !known[at(p, q)];
+                    }
+                    if (!unseen) continue;
+                    low[k] = 1;
+                    l.drop_m[k] = std::max(l.drop_m[k], static_cast<float>(drop));
+                }
+        }
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = at(i, j);

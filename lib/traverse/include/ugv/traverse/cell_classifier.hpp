@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "ugv/traverse/odometer.hpp"
@@ -47,6 +48,8 @@ struct TraversabilityLayers
     std::size_t cells() const { return cell_class.size(); }
 };
 
+class DropsAcrossUnknown;
+
 class CellClassifier
 {
 public:
@@ -63,12 +66,15 @@ private:
 
     ClassifierConfig config_;
     // Per-cell working layers, kept between calls so an update allocates nothing.
-    std::vector<float> top_, bottom_, lowest_, highest_, lowest_level_, lattice_;
+    std::vector<float> top_, bottom_, lowest_, highest_, lowest_level_, lowest_top_, lattice_;
     std::vector<std::array<float, 2>> lattice_slope_;
     std::vector<uint8_t> measured_, edge_, known_, ground_points_, row_known_, face_;
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
+    // The offsets of the drops across unknown cells (step 3), built for the grid's
+    // resolution when it changes.
+    std::shared_ptr<const DropsAcrossUnknown> drops_;
     TerrainGrid levels_;  // the heights the local ground is taken over (cell_level), in mean_z_m
     // The local ground's: known flags (float), a lattice row's column sums, the means split
     // by column parity, a window's points (rows padded to vectors of 8, NaN where unknown)
