@@ -1,4 +1,4 @@
-// The top of a drop whose face the laser cannot see (docs/traverse.md, section 1, step 3).
+// The top of a drop whose face the laser cannot see (docs/traverse.md, section 1, step 4).
 #pragma once
 
 #include <array>

@@ -90,9 +90,9 @@ TEST_CASE("a map turned by its residual yaw is read in the body frame")
 TEST_CASE("the swept width is the configured one to within a fine cell")
 {
     // Two walls two cells thick along the straight arc, the map's cells shifted across it by
-    // fractions of a cell. Walls whose cells lie wholly outside the swept footprint leave the arc free (when
-    // every map cell the outline grazed counted, they blocked it from up to a cell and a half
-    // outside); walls whose nearest cells have their centres inside it block it.
+    // fractions of a cell. Walls whose cells lie wholly outside the swept footprint leave the
+    // arc free (when every map cell the outline grazed counted, they blocked it from up to a
+    // cell and a half outside); walls whose nearest cells have their centres inside block it.
     const ArcSetConfig ac;
     const Footprint fp;
     const double half = 0.5 * fp.width_m + ac.margin_m;
