@@ -1,5 +1,7 @@
 #include "drop_across_unknown.hpp"
 
+#include "local_ground.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,7 +11,7 @@ namespace ugv::traverse {
 DropsAcrossUnknown::DropsAcrossUnknown(double radius_m, double resolution_m)
     : radius_m_(radius_m), resolution_m_(resolution_m)
 {
-    const int h = static_cast<int>(std::floor(radius_m / resolution_m + 1e-6));
+    const int h = ground_half_width(radius_m, resolution_m);  // as the classifier's window of tops
     for (int di = -h; di <= h; ++di)
         for (int dj = -h; dj <= h; ++dj) {
             const double d = std::hypot(di, dj) * resolution_m;

@@ -244,8 +244,8 @@ TEST_CASE("a ditch is a negative obstacle")
 TEST_CASE("a drop whose face lies in its rim's shadow makes the rim a negative obstacle")
 {
     // A wide ditch from x = 6.1 on (a cell boundary); the laser, looking over the rim, never
-    // sees its near wall: the row of cells from 6.1 to 6.3 is unknown. The floor is wider than the ground
-    // radius, so it is its own local ground, and no window of the step rules spans the gap.
+    // sees its near wall: the row of cells from 6.1 to 6.3 is unknown. The floor is wider than
+    // the ground radius, so it is its own local ground, and no step window spans the gap.
     auto shadowed = [](double depth_m) {
         TerrainGrid g = empty_grid(80, 80);
         fill(g, [=](double x, double) { return kGround - (x >= 6.1 ? depth_m : 0.0); });
