@@ -45,6 +45,7 @@ TraverseConfig read_config(runtime::Config& cfg)
     k.max_slope_deg = cl.get_double("max_slope_deg", k.max_slope_deg, 1.0, 89.0);
     k.slope_radius_m = cl.get_double("slope_radius_m", k.slope_radius_m, 0.1, 5.0);
     k.ground_radius_m = cl.get_double("ground_radius_m", k.ground_radius_m, 0.2, 20.0);
+    k.shadow_radius_m = cl.get_double("shadow_radius_m", k.shadow_radius_m, 0.1, 5.0);
     k.max_roughness_m = cl.get_double("max_roughness_m", k.max_roughness_m, 0.001, 5.0);
     k.min_support_samples = cl.get_double("min_support_samples", k.min_support_samples, 1.0, 1000.0);
     k.max_age_s = cl.get_double("max_age_s", k.max_age_s, 0.1, 3600.0);

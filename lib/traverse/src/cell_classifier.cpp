@@ -210,6 +210,7 @@ CellClassifier::CellClassifier(const ClassifierConfig& c) : config_(c)
     positive(c.face_mean_step_m, "face_mean_step_m");
     positive(c.slope_radius_m, "slope_radius_m");
     positive(c.ground_radius_m, "ground_radius_m");
+    positive(c.shadow_radius_m, "shadow_radius_m");
     positive(c.max_roughness_m, "max_roughness_m");
     positive(c.max_age_s, "max_age_s");
     positive(c.max_driven_m, "max_driven_m");
@@ -479,10 +480,12 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // limits as the least floats at or above them (the same verdicts as the comparisons in
     // double).
     // A vertical face up from a neighbour is an obstacle whatever the local ground (a ramp's
-    // side, a wide ditch's rim), unless a drop lies beside it: that step is the ditch's edge,
-    // already a negative obstacle. The means must step too (the cell's mean over the lowest
-    // level around): the spread of passes seen with different pose errors moves a cell's
-    // extremes, not its mean.
+    // side, a wide ditch's rim), unless a drop lies beside it: the face is then a ditch's
+    // wall, and the cell a negative obstacle if its own samples reach face_mean_step down
+    // from its top (it holds the wall's top), else left alone (level ground beside the
+    // edge). Marked after the visits, so that each reads kLow as height_flags left it. The
+    // means must step too (the cell's mean over the lowest level around): the spread of
+    // passes seen with different pose errors moves a cell's extremes, not its mean.
     // The candidates flagged in the same pass (step is NaN where unknown and compares false),
     // then visited by memchr: they are few.
     edge_.resize(n);
@@ -492,6 +495,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                           {float_at_least(c.max_step_m), float_at_least(c.max_drop_m),
                            float_at_least(c.face_mean_step_m), kHigh, kLow},
                           edge_.data(), face_.data());
+    const float face_step = float_at_least(c.face_mean_step_m);
     for (const uint8_t *f = face_.data(), *end = face_.data() + n;
          (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
         const std::size_t k = static_cast<std::size_t>(f - face_.data());
@@ -500,16 +504,22 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
         for (int p = std::max(0, i - hs); p <= std::min(nx - 1, i + hs) && !drop_beside; ++p)
             for (int q = std::max(0, j - hs); q <= std::min(ny - 1, j + hs); ++q)
                 if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
-        if (!drop_beside) edge_[k] |= kHigh;
+        if (!drop_beside)
+            edge_[k] |= kHigh;
+        else if (top_[k] - bottom_[k] >= face_step)
+            rims_.push_back(k);
     }
-    // A drop whose face lies in its rim's shadow, across unknown cells within slope_radius
+    for (const std::size_t k : rims_) edge_[k] |= kLow;
+    rims_.clear();
+    // A drop whose face lies in its rim's shadow, across unknown cells within shadow_radius
     // (drop_across_unknown.hpp). Obstacles already are skipped.
     {
+        const double r = c.shadow_radius_m;
         const float* top = top_.data();
         window_extreme<true>([=](std::size_t k) { return std::isnan(top[k]) ? kInf : top[k]; }, nx, ny,
-                             half_width(c.slope_radius_m, g.resolution_m), window_, lowest_top_);
-        if (!drops_ || !drops_->built_for(c.slope_radius_m, g.resolution_m))
-            drops_ = std::make_shared<const DropsAcrossUnknown>(c.slope_radius_m, g.resolution_m);
+                             half_width(r, g.resolution_m), window_, lowest_top_);
+        if (!drops_ || !drops_->built_for(r, g.resolution_m))
+            drops_ = std::make_shared<const DropsAcrossUnknown>(r, g.resolution_m);
         drops_->mark(g, top_, bottom_, lowest_top_, c.max_drop_m, c.max_slope_deg, kLow, kHigh, edge_, out.drop_m);
     }
     // A cell of fewer samples than min_support_samples is an obstacle only if a cell within

@@ -234,8 +234,10 @@ template <class V>
     const float max_step = limits.max_step, max_drop = limits.max_drop, face_step = limits.face_step;
     const uint8_t high = limits.high_bit, low = limits.low_bit;
     for (std::size_t k = 0; k < n; ++k) {
-        edge[k] = static_cast<uint8_t>((top[k] - ground[k] >= max_step ? high : 0) |
-                                       (ground[k] - bottom[k] >= max_drop ? low : 0));
+        const float up = top[k] - ground[k], down = ground[k] - bottom[k], off = mean[k] - ground[k];
+        const bool within = top[k] - bottom[k] >= max_step;
+        edge[k] = static_cast<uint8_t>((up >= max_step || (within & (up >= down) & (off >= face_step)) ? high : 0) |
+                                       (down >= max_drop || (within & (down > up) & (-off >= face_step)) ? low : 0));
         face[k] = (step[k] >= max_step) & !(mean[k] - lowest_level[k] < face_step) ? 1 : 0;
     }
 }

@@ -109,7 +109,9 @@ void cell_levels(std::size_t n, const float* top, const float* bottom, const flo
                  const float* lowest, uint8_t* known, float* level);
 
 // Step 4's height flags: high_bit where top - ground >= max_step, low_bit where ground -
-// bottom >= max_drop (false where any is NaN); face := 1 where step >= max_step and not
+// bottom >= max_drop (false where any is NaN); where top - bottom >= max_step (a face
+// within the cell), also the bit of the farther extreme's side if the mean lies face_step
+// or more from the ground on that side; face := 1 where step >= max_step and not
 // mean - lowest_level < face_step (the vertical faces' candidates), else 0.
 struct HeightLimits
 {

@@ -348,6 +348,7 @@ TEST_CASE("ugv-traverse refuses a bad key with one line naming it and exit statu
         {"[arcs]\ncount = 0\n", "arcs.count"},
         {"[classifier]\nmax_step_m = -0.1\n", "classifier.max_step_m"},
         {"[classifier]\nmax_age_s = nan\n", "classifier.max_age_s"},
+        {"[classifier]\nshadow_radius_m = 0.0\n", "classifier.shadow_radius_m"},
         {"[footprint]\nwidth_m = 0.0\n", "footprint.width_m"},
         {"arcs_channel = \"A R C S\"\n", "arcs_channel"},
         {"max_stamp_ahead_s = -1.0\n", "max_stamp_ahead_s"},

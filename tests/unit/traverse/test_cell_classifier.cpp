@@ -1,6 +1,7 @@
 // Known-answer maps for the cell classes: flat, a box, a wall cell with a low mean but a
 // high max, a face at the edge of what is known, one stray sample, a ditch, a drop in its
-// rim's shadow, slopes below and above the limit, aged data.
+// rim's shadow, the top of a ditch's wall, a face within one cell, slopes below and above
+// the limit, aged data.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -241,17 +242,47 @@ TEST_CASE("a ditch is a negative obstacle")
     CHECK(count_class(l, CellClass::obstacle) == 0);
 }
 
+TEST_CASE("the cell that holds the top of a ditch's wall is a negative obstacle")
+{
+    // A ditch 0.3 m deep, its floor from x = 10.1 to 11.1 (cell boundaries); its far wall, at
+    // x = 11.1, faces the laser. The cells before it hold the floor; the cell from 11.1 to
+    // 11.3 holds the ground and the wall's top 0.13 m (the laser saw no lower): a face up
+    // from the floor, with the floor's drop beside it. The truth counts the wall's columns.
+    TerrainGrid g = empty_grid();
+    fill(g, [](double x, double) { return kGround - (x >= 10.1 && x < 11.1 ? 0.3 : 0.0); });
+    const std::size_t wall = at(g, 11.2, 0.1), beyond = at(g, 11.4, 0.1);
+    SECTION("the wall's cell, with samples down the wall")
+    {
+        set_samples(g, static_cast<int>(wall / g.ny), static_cast<int>(wall % g.ny),
+                    {kGround, kGround, kGround - 0.01, kGround - 0.05, kGround - 0.1, kGround - 0.13, kGround - 0.13});
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 10.5, 0.1)] == CellClass::negative_obstacle);
+        CAPTURE(l.ground_m[wall], l.step_m[wall], l.drop_m[wall], g.min_z_m[wall], g.mean_z_m[wall]);
+        CHECK(l.cell_class[wall] == CellClass::negative_obstacle);
+        // Not the ground behind it, and nothing is a positive obstacle.
+        CHECK(l.cell_class[beyond] == CellClass::traversable);
+        CHECK(count_class(l, CellClass::obstacle) == 0);
+    }
+    SECTION("a cell of ground beside the floor, its samples all level, stays traversable")
+    {
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[wall] == CellClass::traversable);
+        CHECK(l.cell_class[beyond] == CellClass::traversable);
+    }
+}
+
 TEST_CASE("a drop whose face lies in its rim's shadow makes the rim a negative obstacle")
 {
     // A wide ditch from x = 6.1 on (a cell boundary); the laser, looking over the rim, never
-    // sees its near wall: the row of cells from 6.1 to 6.3 is unknown. The floor is wider than
-    // the ground radius, so it is its own local ground, and no step window spans the gap.
-    auto shadowed = [](double depth_m) {
+    // sees its near wall: the rows of cells from 6.1 to 6.1 + shadow_m are unknown. The floor
+    // is wider than the ground radius, so it is its own local ground, and no step window
+    // spans the gap.
+    auto shadowed = [](double depth_m, double shadow_m = 0.2) {
         TerrainGrid g = empty_grid(80, 80);
         fill(g, [=](double x, double) { return kGround - (x >= 6.1 ? depth_m : 0.0); });
         for (int i = 0; i < g.nx; ++i)
             for (int j = 0; j < g.ny; ++j)
-                if (cx(g, i) > 6.1 && cx(g, i) < 6.3) {
+                if (cx(g, i) > 6.1 && cx(g, i) < 6.1 + shadow_m) {
                     const std::size_t k = static_cast<std::size_t>(i) * g.ny + j;
                     g.count[k] = 0;
                     g.mean_z_m[k] = g.max_z_m[k] = g.min_z_m[k] = g.variance_z_m2[k] = NAN;
@@ -270,6 +301,22 @@ TEST_CASE("a drop whose face lies in its rim's shadow makes the rim a negative o
         CHECK(l.cell_class[at(g, 5.6, 0.1)] == CellClass::traversable);
         CHECK(l.cell_class[at(g, 6.6, 0.1)] == CellClass::traversable);
         CHECK(count_class(l, CellClass::obstacle) == 0);
+    }
+    SECTION("a shadow of 3 cells: across it within shadow_radius_m (0.6 m), not within 0.5 m")
+    {
+        // 0.3 m over the 0.6 m between the centres: steeper than 25 degrees.
+        const TerrainGrid g = shadowed(0.3, 0.4);
+        const TraversabilityLayers l = classify(g);
+        CHECK(l.cell_class[at(g, 6.0, 0.1)] == CellClass::negative_obstacle);
+        CHECK(l.cell_class[at(g, 6.4, 0.1)] == CellClass::unknown);
+        ClassifierConfig nearer;
+        nearer.shadow_radius_m = 0.5;
+        CHECK(classify(g, Odometer{}, nearer).cell_class[at(g, 6.0, 0.1)] == CellClass::traversable);
+    }
+    SECTION("0.25 m across a shadow of 3 cells: gentler than max_slope_deg, no drop")
+    {
+        const TerrainGrid g = shadowed(0.25, 0.4);
+        CHECK(classify(g).cell_class[at(g, 6.0, 0.1)] == CellClass::traversable);
     }
     SECTION("0.15 m deep: less than max_drop, no drop")
     {
@@ -308,6 +355,37 @@ TEST_CASE("a vertical face is an obstacle where the local ground does not show i
     const TraversabilityLayers s = classify(spread);
     REQUIRE(s.step_m[k] >= 0.2f);
     CHECK(s.cell_class[k] == CellClass::traversable);
+}
+
+TEST_CASE("a face within one cell is an obstacle when the cell's mean leaves the ground")
+{
+    // Neither extreme stands max_step (max_drop) from the ground, but they stand max_step
+    // apart (the cell holds a wall's edge, seen down to 0.19 m below the rim or up to 0.19 m
+    // above the foot) and the mean has moved with them.
+    TerrainGrid g = empty_grid(40, 40);
+    fill(g, [](double, double) { return kGround; });
+    const std::size_t down = at(g, 4.1, 0.1), up = at(g, 4.1, -2.1);
+    auto put = [&](std::size_t k, double sign) {
+        std::vector<double> z;
+        for (double d : {0.02, 0.01, -0.05, -0.1, -0.15, -0.18, -0.19, -0.19}) z.push_back(kGround + sign * d);
+        set_samples(g, static_cast<int>(k / g.ny), static_cast<int>(k % g.ny), z);
+    };
+    put(down, 1.0);
+    put(up, -1.0);
+    const TraversabilityLayers l = classify(g);
+    CHECK(l.cell_class[down] == CellClass::negative_obstacle);
+    CHECK(l.cell_class[up] == CellClass::obstacle);
+    CHECK(count_class(l, CellClass::obstacle) == 1);
+    CHECK(count_class(l, CellClass::negative_obstacle) == 1);
+    // 0.18 m apart: no face.
+    for (std::size_t k : {down, up}) {
+        const int i = static_cast<int>(k / g.ny), j = static_cast<int>(k % g.ny);
+        const double s = k == down ? 1.0 : -1.0;
+        set_samples(g, i, j, {kGround + s * 0.01, kGround + s * 0.01, kGround - s * 0.1, kGround - s * 0.17, kGround - s * 0.17});
+    }
+    const TraversabilityLayers flat = classify(g);
+    CHECK(flat.cell_class[down] == CellClass::traversable);
+    CHECK(flat.cell_class[up] == CellClass::traversable);
 }
 
 TEST_CASE("a slope below the limit is traversable, one above it is not")

@@ -72,22 +72,34 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
             l.drop_m[k] = std::max(0.0f, highest - bottom[k]);
             lowest_mean[k] = lowest_m;
             if (std::isnan(ground[k])) continue;
-            high[k] = top[k] - ground[k] >= c.max_step_m;
-            low[k] = ground[k] - bottom[k] >= c.max_drop_m;
+            // Also a face within the cell: top and bottom max_step apart, the mean off the
+            // ground on the side of the farther extreme.
+            const double up = top[k] - ground[k], down = ground[k] - bottom[k], off = g.mean_z_m[k] - ground[k];
+            const bool within = top[k] - bottom[k] >= c.max_step_m;
+            high[k] = up >= c.max_step_m || (within && up >= down && off >= c.face_mean_step_m);
+            low[k] = down >= c.max_drop_m || (within && down > up && -off >= c.face_mean_step_m);
         }
+    // Vertical faces: an obstacle, or with a drop below the local ground beside it (before
+    // any face is marked) a ditch's wall, its cell a negative obstacle if its own top and
+    // bottom lie face_mean_step apart.
+    std::vector<uint8_t> rim(n, 0);
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
             const std::size_t k = at(i, j);
             if (!known[k] || l.step_m[k] < c.max_step_m || g.mean_z_m[k] - lowest_mean[k] < c.face_mean_step_m) continue;
             bool drop_beside = false;
             window(i, j, hs, [&](std::size_t m) { drop_beside = drop_beside || low[m]; });
-            if (!drop_beside) high[k] = 1;
+            if (!drop_beside)
+                high[k] = 1;
+            else if (top[k] - bottom[k] >= c.face_mean_step_m)
+                rim[k] = 1;
         }
+    for (std::size_t k = 0; k < n; ++k) low[k] = low[k] || rim[k];
     // Drops across unknown cells: a known cell not high whose bottom stands max_drop over the
-    // top of a known cell 2 or more cells away within slope_radius, and more steeply than
+    // top of a known cell 2 or more cells away within shadow_radius, and more steeply than
     // max_slope over the distance between their centres, every cell the segment between the
     // centres crosses unknown.
-    const int hd = std::max(1, static_cast<int>(std::floor(c.slope_radius_m / g.resolution_m + 1e-6)));
+    const int hd = std::max(1, static_cast<int>(std::floor(c.shadow_radius_m / g.resolution_m + 1e-6)));
     const double tan_slope = std::tan(c.max_slope_deg * M_PI / 180.0);
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
@@ -97,7 +109,7 @@ TraversabilityLayers plain_layers(const TerrainGrid& g, const ClassifierConfig& 
                 for (int dj = -hd; dj <= hd; ++dj) {
                     const int ti = i + di, tj = j + dj;
                     const double d = std::hypot(di, dj) * g.resolution_m;
-                    if (std::max(std::abs(di), std::abs(dj)) < 2 || d > c.slope_radius_m + 1e-6) continue;
+                    if (std::max(std::abs(di), std::abs(dj)) < 2 || d > c.shadow_radius_m + 1e-6) continue;
                     if (ti < 0 || tj < 0 || ti >= nx || tj >= ny || !known[at(ti, tj)]) continue;
                     const double drop = static_cast<double>(bottom[k]) - top[at(ti, tj)];
                     if (drop < c.max_drop_m || drop < tan_slope * d) continue;
@@ -293,6 +305,7 @@ TEST_CASE("one update equals the plain classifier and arcs on random maps")
             if (maps % 3 == 2) {
                 config.classifier.ground_radius_m = 0.9;
                 config.classifier.slope_radius_m = 0.7;
+                config.classifier.shadow_radius_m = 0.9;
                 config.classifier.step_radius_m = 0.5;
                 config.arcs.count = 7;
             }
@@ -329,6 +342,7 @@ TEST_CASE("one update equals the plain classifier and arcs on small, thin and cu
             TraverseConfig config;
             config.classifier.ground_radius_m = std::array{0.5, 1.3, 1.9}[static_cast<std::size_t>(maps % 3)];
             config.classifier.step_radius_m = maps % 2 ? 0.2 : 0.45;
+            config.classifier.shadow_radius_m = std::array{0.3, 0.6, 1.0}[static_cast<std::size_t>(maps % 3)];
             config.arcs.count = 5;
             CAPTURE(base, nx, ny, maps);
             compare_update(g, config);

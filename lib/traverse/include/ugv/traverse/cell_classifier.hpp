@@ -25,6 +25,7 @@ struct ClassifierConfig
     double max_slope_deg = 25;        // a steeper neighbourhood is an obstacle
     double slope_radius_m = 0.5;      // the plane for the slope is fitted over this radius
     double ground_radius_m = 1.5;     // the local ground is taken over this radius
+    double shadow_radius_m = 0.6;     // a drop's floor is looked for this far across unknown cells
     double max_roughness_m = 0.15;    // a cell's height spread (sd) that costs 1
     double min_support_samples = 2;   // samples near a cell's max (min) for it to be its top (bottom)
     double max_age_s = 60;            // data this old is UNKNOWN (certainty 0)
@@ -72,6 +73,7 @@ private:
     std::vector<float> row_sums_, line_w_, line_z_, line_o_, moments_, tangent_, slope_fd_;
     std::vector<const float*> slope_rows_;
     std::vector<float> window_;
+    std::vector<std::size_t> rims_;  // faces with a drop beside them (step 3)
     // The offsets of the drops across unknown cells (step 3), built for the grid's
     // resolution when it changes.
     std::shared_ptr<const DropsAcrossUnknown> drops_;
