@@ -361,7 +361,9 @@ TEST_CASE("a face within one cell is an obstacle when the cell's mean leaves the
 {
     // Neither extreme stands max_step (max_drop) from the ground, but they stand max_step
     // apart (the cell holds a wall's edge, seen down to 0.19 m below the rim or up to 0.19 m
-    // above the foot) and the mean has moved with them.
+    // above the foot) and the mean has moved with them. The cell going up also meets the
+    // vertical-face rule (its own bottom lies in its step window); the one going down only
+    // this rule.
     TerrainGrid g = empty_grid(40, 40);
     fill(g, [](double, double) { return kGround; });
     const std::size_t down = at(g, 4.1, 0.1), up = at(g, 4.1, -2.1);
