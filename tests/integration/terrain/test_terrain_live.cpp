@@ -24,7 +24,9 @@ TEST_CASE("ugv-terrain maps live traffic and reports its counters")
     // The drive below runs at ~4x real time from now: stamps may lead the clock by more than
     // the default bound of 2 s.
     test::write_file(config, "publish_hz = 10.0\nmax_stamp_ahead_s = 60.0\n");
-    lcm::LCM bus(url);
+    // A map (~270 kB) is larger than the default receive buffer (208 kB): with it, a map
+    // arriving while this thread publishes the drive was lost whole.
+    lcm::LCM bus(url + "&recv_buf_size=4194304");
     REQUIRE(bus.good());
     int maps = 0, statuses = 0;
     terrain_map_t last_map;
