@@ -490,12 +490,10 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
     // then visited by memchr: they are few.
     edge_.resize(n);
     face_.resize(n);
+    const kernels::HeightLimits limits{float_at_least(c.max_step_m), float_at_least(c.max_drop_m),
+                                       float_at_least(c.face_mean_step_m), kHigh, kLow};
     kernels::height_flags(n, top_.data(), bottom_.data(), out.ground_m.data(), out.step_m.data(), g.mean_z_m.data(),
-                          lowest_level_.data(),
-                          {float_at_least(c.max_step_m), float_at_least(c.max_drop_m),
-                           float_at_least(c.face_mean_step_m), kHigh, kLow},
-                          edge_.data(), face_.data());
-    const float face_step = float_at_least(c.face_mean_step_m);
+                          lowest_level_.data(), limits, edge_.data(), face_.data());
     for (const uint8_t *f = face_.data(), *end = face_.data() + n;
          (f = static_cast<const uint8_t*>(std::memchr(f, 1, static_cast<std::size_t>(end - f)))) != nullptr; ++f) {
         const std::size_t k = static_cast<std::size_t>(f - face_.data());
@@ -506,7 +504,7 @@ void CellClassifier::classify(const TerrainGrid& g, const Odometer& odometer, Tr
                 if (edge_[static_cast<std::size_t>(p) * ny + q] & kLow) drop_beside = true;
         if (!drop_beside)
             edge_[k] |= kHigh;
-        else if (top_[k] - bottom_[k] >= face_step)
+        else if (top_[k] - bottom_[k] >= limits.face_step)
             rims_.push_back(k);
     }
     for (const std::size_t k : rims_) edge_[k] |= kLow;

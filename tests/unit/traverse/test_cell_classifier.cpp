@@ -257,7 +257,6 @@ TEST_CASE("the cell that holds the top of a ditch's wall is a negative obstacle"
                     {kGround, kGround, kGround - 0.01, kGround - 0.05, kGround - 0.1, kGround - 0.13, kGround - 0.13});
         const TraversabilityLayers l = classify(g);
         CHECK(l.cell_class[at(g, 10.5, 0.1)] == CellClass::negative_obstacle);
-        CAPTURE(l.ground_m[wall], l.step_m[wall], l.drop_m[wall], g.min_z_m[wall], g.mean_z_m[wall]);
         CHECK(l.cell_class[wall] == CellClass::negative_obstacle);
         // Not the ground behind it, and nothing is a positive obstacle.
         CHECK(l.cell_class[beyond] == CellClass::traversable);
